@@ -1,0 +1,1 @@
+"""jackpy.devices"""
