@@ -1,0 +1,7 @@
+"""``python -m jackpy`` runs the ``jackpy`` command."""
+
+import sys
+
+from jackpy.cli import main
+
+sys.exit(main())

@@ -1,0 +1,1 @@
+"""Subcommands of the ``jackpy`` CLI, one module each, each exporting ``register(subparsers)``."""
