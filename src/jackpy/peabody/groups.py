@@ -1,0 +1,181 @@
+"""Joint groups (dependent joints), book §2.2.5, and the map from free variables to displacements.
+
+A :class:`JointGroup` drives its member joints from a few *group angles* ``theta`` through a
+*driver*; the group angles are limited by a box and by linear inequalities ``A @ theta <= b``
+(eq. 2.1). Member joint angles are hidden outside the group: the IK and the UI move the group
+angles. :class:`VariableMap` turns a figure with groups into one vector of free variables ``x``
+(ungrouped DOFs, then each group's angles) with ``q(x)``, ``dq/dx`` and the linear constraints.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Protocol
+
+import numpy as np
+
+from jackpy.errors import FigureError
+
+if TYPE_CHECKING:
+    from jackpy.peabody.model import Figure
+
+
+class Driver(Protocol):
+    """Maps group angles (n,) to the concatenated member displacements (m,)."""
+
+    def __call__(self, theta: np.ndarray) -> np.ndarray: ...
+
+    def jacobian(self, theta: np.ndarray) -> np.ndarray:
+        """d(member displacements)/d(theta), (m, n)."""
+        ...
+
+
+@dataclass
+class LinearDriver:
+    """Member displacements ``matrix @ theta + offset``."""
+
+    matrix: np.ndarray
+    offset: np.ndarray | None = None
+
+    def __post_init__(self) -> None:
+        self.matrix = np.atleast_2d(np.asarray(self.matrix, dtype=float))
+        self.offset = (np.zeros(self.matrix.shape[0]) if self.offset is None
+                       else np.asarray(self.offset, dtype=float).reshape(-1))
+
+    def __call__(self, theta: np.ndarray) -> np.ndarray:
+        return self.matrix @ theta + self.offset
+
+    def jacobian(self, theta: np.ndarray) -> np.ndarray:
+        return self.matrix
+
+
+@dataclass
+class JointGroup:
+    """Joints moved as one unit by ``driver`` from ``angles`` (radians/metres).
+
+    ``lower``/``upper`` bound each group angle; ``A @ angles <= b`` adds linear limits.
+    """
+
+    name: str
+    joints: list[str]
+    angle_names: list[str]
+    driver: Driver
+    lower: np.ndarray
+    upper: np.ndarray
+    A: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)))
+    b: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    angles: np.ndarray = field(default_factory=lambda: np.zeros(0))
+
+    def __post_init__(self) -> None:
+        n = len(self.angle_names)
+        self.lower = np.asarray(self.lower, dtype=float).reshape(n)
+        self.upper = np.asarray(self.upper, dtype=float).reshape(n)
+        self.A = np.asarray(self.A, dtype=float).reshape(-1, n)
+        self.b = np.asarray(self.b, dtype=float).reshape(-1)
+        if self.A.shape[0] != self.b.size:
+            raise FigureError(f"group {self.name!r}: A has {self.A.shape[0]} rows but b has {self.b.size}")
+        a = np.asarray(self.angles, dtype=float).reshape(-1)
+        self.angles = np.zeros(n) if a.size == 0 else a.reshape(n)
+
+    @property
+    def nangles(self) -> int:
+        return len(self.angle_names)
+
+    def is_feasible(self, theta: np.ndarray, tol: float = 1e-9) -> bool:
+        """True when ``theta`` respects the box and the linear limits."""
+        theta = np.asarray(theta, dtype=float)
+        ok = bool(np.all(theta >= self.lower - tol) and np.all(theta <= self.upper + tol))
+        return ok and bool(np.all(self.A @ theta <= self.b + tol))
+
+    def set_angles(self, figure: "Figure", theta: np.ndarray) -> None:
+        """Set the group angles and drive the member joints; infeasible angles raise FigureError."""
+        theta = np.asarray(theta, dtype=float).reshape(self.nangles)
+        if not self.is_feasible(theta):
+            raise FigureError(f"group {self.name!r}: angles {np.degrees(theta).round(3).tolist()} deg "
+                              "violate the group's limits")
+        self.angles = theta.copy()
+        self.apply(figure)
+
+    def apply(self, figure: "Figure") -> None:
+        """Write the driver's member displacements into the figure's joints."""
+        values = np.asarray(self.driver(self.angles), dtype=float)
+        start = 0
+        for jn in self.joints:
+            j = figure.joint(jn)
+            j.displacement = values[start:start + j.ndof].copy()
+            start += j.ndof
+        if start != values.size:
+            raise FigureError(f"group {self.name!r}: driver gives {values.size} values for {start} member DOFs")
+
+
+class VariableMap:
+    """Free variables of a figure: every DOF not in a group, then each group's angles.
+
+    ``x`` has ``nx`` entries; :meth:`q` gives the joint displacements, :meth:`dq_dx` the chain-rule
+    matrix, :attr:`lower`/:attr:`upper` the variable boxes and :meth:`linear_constraints` the
+    groups' ``A x <= b`` rows lifted to the full ``x``.
+    """
+
+    def __init__(self, figure: "Figure") -> None:
+        self.figure = figure
+        names = figure.dof_names()
+        grouped = np.zeros(figure.ndof, dtype=bool)
+        self.group_slices: list[tuple[object, np.ndarray, slice]] = []
+        for g in figure.groups.values():
+            idx = np.concatenate([np.arange(figure.ndof)[figure.joint_dof_slice(jn)] for jn in g.joints])
+            grouped[idx] = True
+            self.group_slices.append((g, idx, slice(0, 0)))
+        self.free_dofs = np.flatnonzero(~grouped)
+        nfree = self.free_dofs.size
+        start = nfree
+        slices = []
+        for g, idx, _ in self.group_slices:
+            slices.append((g, idx, slice(start, start + g.nangles)))
+            start += g.nangles
+        self.group_slices = slices
+        self.nx = start
+        self.names = [names[i] for i in self.free_dofs] + [
+            f"{g.name}.{a}" for g, _, _ in slices for a in g.angle_names]
+        lo, hi = figure.lower, figure.upper
+        self.lower = np.concatenate([lo[self.free_dofs]] + [g.lower for g, _, _ in slices])
+        self.upper = np.concatenate([hi[self.free_dofs]] + [g.upper for g, _, _ in slices])
+
+    def x(self) -> np.ndarray:
+        """Current variables from the figure."""
+        q = self.figure.q
+        return np.concatenate([q[self.free_dofs]] + [g.angles for g, _, _ in self.group_slices])
+
+    def q(self, x: np.ndarray) -> np.ndarray:
+        """Joint displacements for variables ``x``."""
+        q = self.figure.q
+        q[self.free_dofs] = x[:self.free_dofs.size]
+        for g, idx, sl in self.group_slices:
+            q[idx] = g.driver(x[sl])
+        return q
+
+    def dq_dx(self, x: np.ndarray) -> np.ndarray:
+        """(ndof, nx) Jacobian of :meth:`q`."""
+        m = np.zeros((self.figure.ndof, self.nx))
+        m[self.free_dofs, np.arange(self.free_dofs.size)] = 1.0
+        for g, idx, sl in self.group_slices:
+            m[np.ix_(idx, np.arange(sl.start, sl.stop))] = g.driver.jacobian(x[sl])
+        return m
+
+    def linear_constraints(self) -> tuple[np.ndarray, np.ndarray]:
+        """All groups' ``A x <= b`` rows over the full variable vector."""
+        rows, rhs = [], []
+        for g, _, sl in self.group_slices:
+            if g.A.size:
+                a = np.zeros((g.A.shape[0], self.nx))
+                a[:, sl] = g.A
+                rows.append(a)
+                rhs.append(g.b)
+        if not rows:
+            return np.zeros((0, self.nx)), np.zeros(0)
+        return np.vstack(rows), np.concatenate(rhs)
+
+    def apply(self, x: np.ndarray) -> None:
+        """Write variables ``x`` into the figure (free DOFs and group angles)."""
+        self.figure.q = self.q(x)
+        for g, _, sl in self.group_slices:
+            g.angles = np.array(x[sl], dtype=float)

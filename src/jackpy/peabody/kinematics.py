@@ -1,0 +1,254 @@
+"""Forward kinematics, site Jacobians and centre of mass over a flattened, rooted tree.
+
+The figure's joints form a tree; rooting it at the root site's segment gives each other segment a
+parent and a joint to it, traversed either *down* (the joint's from-site is on the parent) or *up*.
+With ``L(s)`` a site's location in its segment and ``D`` a joint's displacement transform:
+
+- down: ``W(child) = W(parent) @ L(from) @ D @ L(to)^-1``
+- up:   ``W(child) = W(parent) @ L(to) @ D^-1 @ L(from)^-1``
+- root: ``W(root segment) = location @ L(root site)^-1``
+
+Everything is flattened once into arrays (rebuilt only when topology or root changes). A forward
+pass is a fixed number of batched numpy operations: vectorised Rodrigues for all DOFs, a product of
+the (at most three) DOF transforms of every joint, then composition along the tree by pointer
+jumping (``ceil(log2(depth))`` batched matrix products), so there is no Python loop per joint or DOF.
+"""
+
+from __future__ import annotations
+
+from collections import deque
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from jackpy.errors import FigureError
+from jackpy.peabody.transforms import batch_rotations, rigid_inverse
+
+if TYPE_CHECKING:
+    from jackpy.peabody.model import Figure
+
+MAX_JOINT_DOFS = 3
+
+
+@dataclass
+class FKResult:
+    """World transforms from one forward pass.
+
+    ``segments`` (nseg,4,4) in :attr:`Kinematics.segment_names` order; ``dof_axes`` and
+    ``dof_origins`` (ndof,3) the world axis and a point on it of every DOF in ``q`` order.
+    """
+
+    segments: np.ndarray
+    dof_axes: np.ndarray
+    dof_origins: np.ndarray
+
+
+class Kinematics:
+    """The flattened rooted tree of a figure; call :meth:`forward` with displacements ``q``."""
+
+    def __init__(self, figure: "Figure") -> None:
+        figure.validate()
+        self.figure_name = figure.name
+        self.segment_names: list[str] = []
+        self.segment_index: dict[str, int] = {}
+        joints = list(figure.joints.values())
+        self.joint_names = [j.name for j in joints]
+        self.ndof = sum(j.ndof for j in joints)
+        nj = len(joints)
+        for j in joints:
+            if j.ndof > MAX_JOINT_DOFS:
+                raise FigureError(f"figure {figure.name!r}: joint {j.name!r} has {j.ndof} DOFs; at most "
+                                  f"{MAX_JOINT_DOFS} per joint (chain joints for more)")
+
+        # --- breadth-first order from the root segment ---------------------------------------
+        root = figure.root_segment()
+        by_seg: dict[str, list[int]] = {s: [] for s in figure.segments}
+        for ji, j in enumerate(joints):
+            by_seg[j.from_seg].append(ji)
+            by_seg[j.to_seg].append(ji)
+        parent: list[int] = []
+        parent_joint: list[int] = []
+        direction: list[int] = []
+        order = deque([root])
+        seen = {root}
+        while order:
+            s = order.popleft()
+            self.segment_index[s] = len(self.segment_names)
+            self.segment_names.append(s)
+            for ji in by_seg[s]:
+                j = joints[ji]
+                other, down = (j.to_seg, 1) if j.from_seg == s else (j.from_seg, -1)
+                if other in seen:
+                    continue
+                seen.add(other)
+                order.append(other)
+        nseg = len(self.segment_names)
+        parent = [-1] * nseg
+        parent_joint = [-1] * nseg
+        direction = [0] * nseg
+        for ji, j in enumerate(joints):
+            a, b = self.segment_index[j.from_seg], self.segment_index[j.to_seg]
+            if a < b:  # BFS order: the parent comes first
+                parent[b], parent_joint[b], direction[b] = a, ji, 1
+            else:
+                parent[a], parent_joint[a], direction[a] = b, ji, -1
+        self.parent = np.array(parent)
+        self.parent_joint = np.array(parent_joint)
+        self.direction = np.array(direction)
+
+        # --- per-joint data -------------------------------------------------------------------
+        self.L_from = np.array([figure.site_location(j.from_seg, j.from_site) for j in joints]).reshape(nj, 4, 4)
+        self.L_to = np.array([figure.site_location(j.to_seg, j.to_site) for j in joints]).reshape(nj, 4, 4)
+        self.L_from_inv = rigid_inverse(self.L_from) if nj else self.L_from
+        self.L_to_inv = rigid_inverse(self.L_to) if nj else self.L_to
+        self.joint_from_seg = np.array([self.segment_index[j.from_seg] for j in joints], dtype=int)
+        self.joint_direction = np.zeros(nj, dtype=int)
+        for s in range(nseg):
+            if parent_joint[s] >= 0:
+                self.joint_direction[parent_joint[s]] = direction[s]
+
+        # DOF slots: joint ji's DOFs stored proximal-first (reverse of type order) in slots 0..2.
+        axes, kinds, slot, dof_joint = [], [], [], []
+        for ji, j in enumerate(joints):
+            for k, d in enumerate(j.dofs):
+                axes.append(d.axis)
+                kinds.append(d.kind)
+                slot.append(ji * MAX_JOINT_DOFS + (j.ndof - 1 - k))
+                dof_joint.append(ji)
+        self.dof_axis = np.array(axes, dtype=float).reshape(-1, 3)
+        kinds_arr = np.array(kinds)
+        self.rot_dofs = np.flatnonzero(kinds_arr == "R")
+        self.trans_dofs = np.flatnonzero(kinds_arr == "T")
+        self.dof_slot = np.array(slot, dtype=int)
+        self.dof_joint = np.array(dof_joint, dtype=int)
+        self.dof_sign = self.joint_direction[self.dof_joint] if nj else np.zeros(0, dtype=int)
+        self.njoints = nj
+
+        # --- pointer-jumping schedule ------------------------------------------------------------
+        anc = self.parent.copy()
+        anc[0] = 0
+        done = np.zeros(nseg, dtype=bool)
+        done[0] = True
+        self.jump_steps: list[tuple[np.ndarray, np.ndarray]] = []
+        while not done.all():
+            idx = np.flatnonzero(~done)
+            src = anc[idx]
+            self.jump_steps.append((idx, src))
+            new_done = done.copy()
+            new_done[idx] = done[src]
+            anc[idx] = anc[src]
+            done = new_done
+        self.down_seg = np.flatnonzero(self.direction == 1)
+        self.up_seg = np.flatnonzero(self.direction == -1)
+
+        # --- ancestry: which DOFs move which segment -------------------------------------------
+        # moves[s, i] is True when DOF i lies on the path from the root to segment s.
+        seg_moves = np.zeros((nseg, max(nj, 1)), dtype=bool)
+        for s in range(1, nseg):
+            seg_moves[s] = seg_moves[self.parent[s]]
+            seg_moves[s, self.parent_joint[s]] = True
+        self.seg_moved_by_dof = seg_moves[:, self.dof_joint] if nj else np.zeros((nseg, 0), dtype=bool)
+
+        # root and mass data
+        self.root_site_inv = rigid_inverse(figure.root_site_location())
+        segs = [figure.segments[n] for n in self.segment_names]
+        self.mass = np.array([s.mass for s in segs], dtype=float)
+        self.com_local = np.array([s.com for s in segs], dtype=float).reshape(nseg, 3)
+        self._eye_slots = np.broadcast_to(np.eye(4), (max(nj, 1) * MAX_JOINT_DOFS, 4, 4))
+
+    # ----- forward -----------------------------------------------------------------------------
+    def dof_matrices(self, q: np.ndarray) -> np.ndarray:
+        """Per-joint DOF transforms (njoints, 3, 4, 4), proximal-first, identity-padded."""
+        m = self._eye_slots.copy()
+        if self.rot_dofs.size:
+            r = self.rot_dofs
+            m[self.dof_slot[r], :3, :3] = batch_rotations(self.dof_axis[r], q[r])
+        if self.trans_dofs.size:
+            t = self.trans_dofs
+            m[self.dof_slot[t], :3, 3] = self.dof_axis[t] * q[t, None]
+        return m.reshape(-1, MAX_JOINT_DOFS, 4, 4)
+
+    def forward(self, q: np.ndarray, location: np.ndarray) -> FKResult:
+        """World transforms of every segment for displacements ``q`` and root-site ``location``."""
+        q = np.asarray(q, dtype=float)
+        nseg = len(self.segment_names)
+        W = np.empty((nseg, 4, 4))
+        W[0] = location @ self.root_site_inv
+        if self.njoints == 0:
+            return FKResult(W, np.zeros((0, 3)), np.zeros((0, 3)))
+        m = self.dof_matrices(q)
+        p1 = m[:, 0] @ m[:, 1]
+        D = p1 @ m[:, 2]
+        pj = self.parent_joint
+        if self.down_seg.size:
+            s = self.down_seg
+            j = pj[s]
+            W[s] = self.L_from[j] @ D[j] @ self.L_to_inv[j]
+        if self.up_seg.size:
+            s = self.up_seg
+            j = pj[s]
+            W[s] = self.L_to[j] @ rigid_inverse(D[j]) @ self.L_from_inv[j]
+        for idx, src in self.jump_steps:
+            W[idx] = W[src] @ W[idx]
+        # DOF frames: slot 0 acts in the from-site frame, slot 1 after slot 0, slot 2 after both.
+        from_site = W[self.joint_from_seg] @ self.L_from
+        frames = np.stack([from_site, from_site @ m[:, 0], from_site @ p1], axis=1).reshape(-1, 4, 4)
+        f = frames[self.dof_slot]
+        axes = np.einsum("nij,nj->ni", f[:, :3, :3], self.dof_axis)
+        return FKResult(W, axes, f[:, :3, 3])
+
+    # ----- Jacobians -----------------------------------------------------------------------------
+    def point_jacobian(self, fk: FKResult, seg: int, point: np.ndarray) -> np.ndarray:
+        """d(world point fixed on segment ``seg``)/dq, (3, ndof). ``point`` is in world coordinates."""
+        moved = self.seg_moved_by_dof[seg]
+        return self._point_jac(fk, moved, point)
+
+    def _point_jac(self, fk: FKResult, moved: np.ndarray, point: np.ndarray) -> np.ndarray:
+        sign = self.dof_sign * moved
+        lin = np.cross(fk.dof_axes, point - fk.dof_origins)
+        if self.trans_dofs.size:
+            lin[self.trans_dofs] = fk.dof_axes[self.trans_dofs]
+        return (lin * sign[:, None]).T
+
+    def rotation_jacobian(self, fk: FKResult, seg: int) -> np.ndarray:
+        """Angular velocity of segment ``seg`` per unit dq, world frame, (3, ndof)."""
+        sign = self.dof_sign * self.seg_moved_by_dof[seg]
+        ang = fk.dof_axes * sign[:, None]
+        if self.trans_dofs.size:
+            ang[self.trans_dofs] = 0.0
+        return ang.T
+
+    def site_jacobian(self, fk: FKResult, seg: int, site_location: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """(world site transform, 6 x ndof Jacobian: rows 0-2 linear, 3-5 angular velocity)."""
+        w = fk.segments[seg] @ site_location
+        jp = self.point_jacobian(fk, seg, w[:3, 3])
+        jr = self.rotation_jacobian(fk, seg)
+        return w, np.vstack([jp, jr])
+
+    # ----- centre of mass ----------------------------------------------------------------------
+    def centre_of_mass(self, fk: FKResult) -> np.ndarray:
+        """World centre of mass (metres); the root origin if the figure has no mass."""
+        total = self.mass.sum()
+        if total <= 0:
+            return fk.segments[0][:3, 3].copy()
+        c = self.segment_coms(fk)
+        return (self.mass[:, None] * c).sum(axis=0) / total
+
+    def segment_coms(self, fk: FKResult) -> np.ndarray:
+        """World centre of mass of every segment (nseg,3)."""
+        return np.einsum("nij,nj->ni", fk.segments[:, :3, :3], self.com_local) + fk.segments[:, :3, 3]
+
+    def com_jacobian(self, fk: FKResult) -> np.ndarray:
+        """d(centre of mass)/dq (3, ndof), vectorised over all DOFs."""
+        total = self.mass.sum()
+        if total <= 0 or self.ndof == 0:
+            return np.zeros((3, self.ndof))
+        c = self.segment_coms(fk)
+        moved = self.seg_moved_by_dof.T.astype(float)  # (ndof, nseg)
+        m_moved = moved @ self.mass  # (ndof,)
+        mc_moved = moved @ (self.mass[:, None] * c)  # (ndof,3)
+        lin = np.cross(fk.dof_axes, mc_moved - m_moved[:, None] * fk.dof_origins)
+        if self.trans_dofs.size:
+            lin[self.trans_dofs] = fk.dof_axes[self.trans_dofs] * m_moved[self.trans_dofs, None]
+        return (lin * self.dof_sign[:, None]).T / total
