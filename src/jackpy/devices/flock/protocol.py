@@ -157,23 +157,26 @@ class Format(enum.IntEnum):
 
     @classmethod
     def parse(cls, name: str) -> Format:
-        """A format from its name (``position_angles``, ``pos_quat`` ...) or its command letter."""
+        """A format from its name (``position_angles``, ``pos_quat``, ``Y`` ...)."""
         key = name.strip().lower().replace("-", "_").replace("/", "_")
-        key = {"pos": "position", "ang": "angles", "mat": "matrix", "quat": "quaternion"}.get(key, key)
-        for alias, full in (("pos_", "position_"), ("_ang", "_angles"), ("_mat", "_matrix"),
-                            ("_quat", "_quaternion")):
-            if not key.startswith(full.strip("_")) and alias in f"{key}" and full not in key:
-                key = key.replace(alias, full)
-        for f in cls:
-            if f.name.lower() == key or (len(name) == 1 and ord(name) == f.value):
-                return f
-        raise DeviceError(f"unknown record format {name!r}; one of "
-                          + ", ".join(f.name.lower() for f in cls))
+        if len(name) == 1 and ord(name) in cls._value2member_map_:
+            return cls(ord(name))
+        fmt = _FORMAT_ALIASES.get(key) or cls.__members__.get(key.upper())
+        if fmt is None:
+            raise DeviceError(f"unknown record format {name!r}; one of "
+                              + ", ".join(f.name.lower() for f in cls))
+        return fmt
 
 
 _ORIENT_WORDS = {
     Format.POSITION: 0, Format.ANGLES: 3, Format.MATRIX: 9, Format.POSITION_ANGLES: 3,
     Format.POSITION_MATRIX: 9, Format.QUATERNION: 4, Format.POSITION_QUATERNION: 4,
+}
+
+_FORMAT_ALIASES = {
+    "pos": Format.POSITION, "ang": Format.ANGLES, "mat": Format.MATRIX, "quat": Format.QUATERNION,
+    "pos_ang": Format.POSITION_ANGLES, "pos_mat": Format.POSITION_MATRIX,
+    "pos_quat": Format.POSITION_QUATERNION,
 }
 
 # --- word packing ------------------------------------------------------------------------------

@@ -1,0 +1,188 @@
+"""Protocol: the spec's worked examples (§6), round trips for every format, and decoder fuzzing."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from jackpy.devices.flock import protocol as p
+from jackpy.devices.flock.protocol import BirdLayout, Format, StreamDecoder
+from jackpy.errors import DeviceError, JackpyError
+
+H = bytes.fromhex
+
+
+def decode_one(data: bytes, fmt: Format, scale: float = 36.0, group: bool = False,
+               address: int = 0, button: bool = False) -> p.Record:
+    dec = StreamDecoder({address: BirdLayout(fmt, scale, button)}, group=group)
+    recs = dec.feed(data)
+    assert len(recs) == 1 and dec.dropped == 0 and dec.pending == 0
+    return recs[0]
+
+
+def test_e1_manual_packing_vector():
+    data = p.pack_words([0x1122, 0x3344, 0x5566])
+    assert data == H("C8 08 51 19 59 2A")
+    assert [w & 0xFFFF for w in p.unpack_words(data)] == [0x1120, 0x3344, 0x5564]
+
+
+def test_e2_position_angles():
+    r = decode_one(H("E4 11 0E 77 39 04 00 20 00 70 55 0A"), Format.POSITION_ANGLES)
+    assert np.allclose(r.position, (10.001953, -5.000977, 2.500488), atol=1e-6)
+    assert np.allclose(r.angles, (90.0, -45.0, 29.992676), atol=1e-6)
+
+
+def test_e3_position_extremes():
+    r = decode_one(H("80 40 7F 3F 01 00"), Format.POSITION)
+    assert np.allclose(r.position, (-36.0, 35.995605, 0.004395), atol=1e-6)
+
+
+def test_e4_quaternion_identity_and_clamp():
+    r = decode_one(H("FF 3F 00 00 00 00 00 00"), Format.QUATERNION)
+    assert np.allclose(r.quaternion, (0.999878, 0, 0, 0), atol=1e-6)
+    assert p.make_record(Format.QUATERNION).words == (0x7FFC, 0, 0, 0)
+    assert p.unpack_words(H("80 40")) == (-0x8000,)
+
+
+def test_e5_position_quaternion_group_72():
+    data = H("D5 0A 55 7A 2B 15 21 2D 00 00 00 00 5F 52 02")
+    r = decode_one(data, Format.POSITION_QUATERNION, 72.0, group=True, address=2)
+    assert r.address == 2
+    assert np.allclose(r.position, (11.997070, -6.002930, 24.002930), atol=1e-6)
+    assert np.allclose(r.quaternion, (0.707153, 0, 0, -0.707153), atol=1e-6)
+    # azimuth +90 deg: the sensor x axis turns to transmitter +y (turned right)
+    assert np.allclose(r.rotation() @ [1, 0, 0], [0, 1, 0], atol=1e-3)
+    made = p.make_record(Format.POSITION_QUATERNION, (12, -6, 24), (90, 0, 0), scale=72.0, address=2)
+    assert p.encode_record(made, group=True) == data
+
+
+def test_e6_matrix_and_quaternion_agree():
+    data = H("80 00 00 40 00 00 7F 3F 00 00 00 00 00 00 00 00 7F 3F")
+    r = decode_one(data, Format.MATRIX)
+    m = r.matrix
+    assert np.allclose(m, [[0, 0.999878, 0], [-1.0, 0, 0], [0, 0, 0.999878]], atol=1e-6)
+    assert p.encode_record(p.make_record(Format.MATRIX, angles=(90, 0, 0))) == data
+    q = p.encode_record(p.make_record(Format.QUATERNION, angles=(90, 0, 0)))
+    assert q == H("A1 2D 00 00 00 00 5F 52")
+    rq = decode_one(q, Format.QUATERNION)
+    assert np.allclose(rq.rotation(), r.rotation(), atol=1e-3)
+    assert np.allclose(r.rotation(), p.rotation_from_angles(np.pi / 2, 0, 0), atol=1e-3)
+
+
+def test_e7_group_point_mixed_formats():
+    dec = StreamDecoder({2: BirdLayout(Format.POSITION), 3: BirdLayout(Format.POSITION_ANGLES)},
+                        group=True)
+    recs = dec.feed(H("F2 08 00 00 0E 77 02 80 00 64 11 00 00 00 60 00 10 7F 3F 03"))
+    assert [r.address for r in recs] == [2, 3]
+    assert np.allclose(recs[0].position, (5.000977, 0, -5.000977), atol=1e-6)
+    assert np.allclose(recs[1].position, (0, 10.001953, 0), atol=1e-6)
+    assert np.allclose(recs[1].angles, (-90.0, 45.0, 179.978027), atol=1e-6)
+
+
+def test_e8_resync_after_lost_byte():
+    dec = StreamDecoder({0: BirdLayout(Format.POSITION)})
+    recs = dec.feed(H("E4 11 00 1C 6E D5 12 00 00 1C 6E"))
+    assert len(recs) == 1 and dec.dropped == 1
+    assert np.allclose(recs[0].position, (10.498535, 0, -10.001953), atol=1e-6)
+
+
+def test_e8_byte_at_a_time_gives_the_same():
+    dec = StreamDecoder({0: BirdLayout(Format.POSITION)})
+    recs = [r for b in H("E4 11 00 1C 6E D5 12 00 00 1C 6E") for r in dec.feed(bytes([b]))]
+    assert len(recs) == 1 and dec.dropped == 1
+
+
+def test_e9_button_and_group_trailers():
+    r = decode_one(H("80 00 00 00 00 00 10 01"), Format.POSITION, group=True, address=1, button=True)
+    assert r.button == 0x10 and r.address == 1 and r.position == (0, 0, 0)
+    made = p.make_record(Format.POSITION, button=0x10, address=1)
+    assert p.encode_record(made, group=True) == H("80 00 00 00 00 00 10 01")
+
+
+def test_e10_command_frames():
+    assert p.fbb_prefix(2) + p.hemisphere_command("lower") == H("F2 4C 0C 00")
+    assert p.fbb_prefix(3) + bytes([Format.POSITION_QUATERNION]) == H("F3 5D")
+    assert p.change_value(p.P_AUTO_CONFIG, b"\x03") == H("50 32 03")
+    assert p.change_value(p.P_GROUP_MODE, b"\x01") == H("50 23 01")
+    assert p.change_value(p.P_MEASUREMENT_RATE, p.measurement_rate_value(103.3)) == H("50 07 4D 67")
+    assert p.fbb_prefix(2) + p.change_value(p.P_POSITION_SCALING, b"\x01\x00") == H("F2 50 03 01 00")
+    assert p.fbb_prefix(2) + bytes([p.ANGLE_ALIGN2]) + p.angle_words(90, -30, 0) == H("F2 71 00 40 AB EA 00 00")
+    assert p.fbb_prefix(16, "expanded") == H("E0") and p.fbb_prefix(30, "expanded") == H("EE")
+    assert p.fbb_prefix(2, "super") == H("A0 02") and p.fbb_prefix(15) == H("FF")
+
+
+def test_e11_examine_replies():
+    st_ = p.BirdStatus(p.u16_le(H("09 D0")))
+    assert st_.master and st_.initialized and st_.running and st_.stream
+    assert st_.format is Format.POSITION_ANGLES
+    assert p.decode_revision(H("03 43")) == "3.67"
+    assert p.u16_le(H("4D 67")) / 256 == pytest.approx(103.30, abs=0.01)
+
+
+def test_bad_commands_raise_project_errors():
+    with pytest.raises(DeviceError):
+        p.fbb_prefix(16)
+    with pytest.raises(DeviceError):
+        p.change_value(p.P_GROUP_MODE, b"\x01\x00")
+    with pytest.raises(DeviceError):
+        p.hemisphere_command("sideways")
+    with pytest.raises(DeviceError):
+        Format.parse("euler")
+    with pytest.raises(DeviceError):
+        p.measurement_rate_value(500)
+    with pytest.raises(DeviceError):
+        StreamDecoder({1: BirdLayout(), 2: BirdLayout()}, group=False)
+
+
+def test_format_names():
+    assert Format.parse("pos_quat") is Format.POSITION_QUATERNION
+    assert Format.parse("position-angles") is Format.POSITION_ANGLES
+    assert Format.parse("Y") is Format.POSITION_ANGLES
+    for f in Format:
+        assert Format(f.status_code + 0x55) is f
+
+
+poses = st.tuples(
+    st.tuples(*[st.floats(-35.9, 35.9)] * 3),
+    st.tuples(st.floats(-179.9, 179.9), st.floats(-89.9, 89.9), st.floats(-179.9, 179.9)),
+)
+
+
+@settings(max_examples=60, deadline=None)
+@given(pose=poses, fmt=st.sampled_from(list(Format)), scale=st.sampled_from(p.POSITION_SCALES),
+       group=st.booleans(), button=st.booleans())
+def test_round_trip_every_format(pose, fmt, scale, group, button):
+    pos, ang = pose
+    pos = tuple(x * scale / 36.0 for x in pos)
+    rec = p.make_record(fmt, pos, ang, scale=scale, button=0x10 if button else None,
+                        address=5 if group else None)
+    data = p.encode_record(rec, group=group)
+    assert len(data) == BirdLayout(fmt, scale, button).length(group)
+    back = decode_one(data, fmt, scale, group=group, address=5 if group else 0, button=button)
+    assert back.words == rec.words
+    if fmt.has_position:
+        assert np.allclose(back.position, pos, atol=scale / 8192)
+    r_true = p.rotation_from_angles(*np.radians(ang))
+    if fmt.orientation_words == 3:
+        assert np.allclose(back.angles, ang, atol=180 / 8192)
+    if fmt.orientation_words:
+        assert np.allclose(back.rotation(), r_true, atol=2e-3)
+
+
+@settings(max_examples=200, deadline=None)
+@given(junk=st.binary(max_size=400), group=st.booleans(), chunk=st.integers(1, 64))
+def test_fuzz_decoder_never_raises(junk, group, chunk):
+    layouts = {1: BirdLayout(Format.POSITION), 2: BirdLayout(Format.POSITION_QUATERNION, 72.0, True)}
+    dec = StreamDecoder(layouts if group else {1: layouts[1]}, group=group)
+    good = p.encode_record(p.make_record(Format.POSITION, (1, 2, 3), address=1), group=group)
+    stream = junk + good
+    try:
+        recs = [r for k in range(0, len(stream), chunk) for r in dec.feed(stream[k:k + chunk])]
+    except JackpyError:
+        return
+    # garbage in -> only drops; a clean record after the garbage always comes out
+    assert recs and recs[-1].words == p.make_record(Format.POSITION, (1, 2, 3)).words
+    for r in recs:
+        assert r.address in (1, 2) and len(r.words) == r.format.words
