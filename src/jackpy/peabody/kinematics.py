@@ -48,7 +48,7 @@ class Kinematics:
     """The flattened rooted tree of a figure; call :meth:`forward` with displacements ``q``."""
 
     def __init__(self, figure: "Figure") -> None:
-        figure.validate()
+        figure.validate(check_limits=False)
         self.figure_name = figure.name
         self.segment_names: list[str] = []
         self.segment_index: dict[str, int] = {}

@@ -316,8 +316,12 @@ class Figure:
         return float(sum(s.mass for s in self.segments.values()))
 
     # ----- checks ---------------------------------------------------------------------------
-    def validate(self) -> None:
-        """Raise :class:`FigureError` naming the part at fault if the figure is not a valid tree."""
+    def validate(self, check_limits: bool = True) -> None:
+        """Raise :class:`FigureError` naming the part at fault if the figure is not a valid tree.
+
+        With ``check_limits`` every displacement must also lie within its DOF limits (files must
+        satisfy this; kinematics only needs the structure and skips it).
+        """
         for j in self.joints.values():
             for seg, site in ((j.from_seg, j.from_site), (j.to_seg, j.to_site)):
                 if seg not in self.segments:
@@ -332,7 +336,7 @@ class Figure:
             for k, (d, v) in enumerate(zip(j.dofs, j.displacement)):
                 if d.lower > d.upper:
                     raise FigureError(f"figure {self.name!r}: joint {j.name!r} DOF {k}: lower limit above upper")
-                if not (d.lower - 1e-9 <= v <= d.upper + 1e-9):
+                if check_limits and not (d.lower - 1e-9 <= v <= d.upper + 1e-9):
                     unit, f = ("deg", 180 / np.pi) if d.kind == "R" else ("cm", 100.0)
                     raise FigureError(f"figure {self.name!r}: joint {j.name!r} DOF {k}: displacement "
                                       f"{v * f:.6g} {unit} outside limits [{d.lower * f:.6g}, {d.upper * f:.6g}] {unit}")
