@@ -42,10 +42,11 @@ _AXIS_COLORS = np.array([[0.9, 0.2, 0.2, 1.0], [0.25, 0.8, 0.25, 1.0], [0.25, 0.
 
 @dataclass
 class InstanceBatch:
-    """Instances of one mesh drawn in one call."""
+    """Instances of one mesh drawn in one call; ``wireframe`` adds an edge overlay."""
 
     mesh: str
     records: np.ndarray
+    wireframe: bool = False
 
 
 @dataclass
@@ -229,11 +230,12 @@ def back_to_front(items: Sequence[DrawItem], view: np.ndarray,
 
 
 def item_batches(items: Sequence[DrawItem]) -> list[InstanceBatch]:
-    """Consecutive items of the same mesh as batches, keeping their order."""
+    """Runs of consecutive items with the same mesh and wireframe flag, keeping their order."""
     batches: list[InstanceBatch] = []
     for item, rec in zip(items, _item_records(items)):
-        if batches and batches[-1].mesh == item.mesh:
-            batches[-1].records = np.concatenate([batches[-1].records, rec[None]])
+        last = batches[-1] if batches else None
+        if last is not None and (last.mesh, last.wireframe) == (item.mesh, item.wireframe):
+            last.records = np.concatenate([last.records, rec[None]])
         else:
-            batches.append(InstanceBatch(item.mesh, rec[None]))
+            batches.append(InstanceBatch(item.mesh, rec[None], item.wireframe))
     return batches

@@ -31,6 +31,7 @@ from jackpy.ui.render.instancing import (
     item_batches,
     rgba,
 )
+from jackpy.ui.render.image import write_png
 from jackpy.ui.render.mesh import Mesh
 from jackpy.ui.render.scene import Grid, Lines, Scene
 
@@ -216,7 +217,7 @@ class Renderer:
             for face in ("front", "back"):  # cull front faces first: back faces are drawn first
                 ctx.cull_face = face
                 self._draw(prog, [batch])
-            if any(i.wireframe for i in batches.transparent if i.mesh == batch.mesh):
+            if batch.wireframe:
                 ctx.disable(moderngl.CULL_FACE)
                 self._draw_wireframe([batch])
                 ctx.enable(moderngl.CULL_FACE)
@@ -305,8 +306,6 @@ class Renderer:
 
     def save_png(self, path: str | Path) -> None:
         """Write the last rendered image to a PNG file."""
-        from jackpy.ui.render.offscreen import write_png
-
         write_png(path, self.read_pixels())
 
     def pick(self, x: int, y: int) -> int | None:
