@@ -565,3 +565,9 @@ class StreamDecoder:
             if not self.group or buf[end - 1] == addr:
                 return addr
         return -1
+
+
+def angles_from_rotation(r: np.ndarray) -> tuple[float, float, float]:
+    """Inverse of :func:`rotation_from_angles`: (azimuth, elevation, roll) in radians."""
+    elevation = float(np.arcsin(np.clip(-r[2, 0], -1.0, 1.0)))
+    return float(np.arctan2(r[1, 0], r[0, 0])), elevation, float(np.arctan2(r[2, 1], r[2, 2]))

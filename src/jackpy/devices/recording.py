@@ -1,0 +1,192 @@
+"""Record raw Flock samples to a file as they arrive, and read and replay them.
+
+File format (text, one JSON value per line, UTF-8): the first line is a header object
+``{"jackpy": "flock-recording", "version": 1, ...}``; every other line is one sample
+``[t, bird, seq, format, scale, [words...], button, metal]`` with ``t`` in seconds since the
+recording started, ``format`` the record format's command letter, ``scale`` the position full
+scale in inches and ``words`` the record's signed 16-bit words (device units, transmitter frame).
+
+Safety: the header is written to a temporary file and renamed into place, so a recording file
+always starts with a valid header; samples are appended and flushed to disk at least every
+``flush_interval`` seconds (default 1 s), so a crash loses at most the last second. A torn last
+line is ignored on read.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import threading
+import time
+from collections.abc import Iterator, Mapping
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from jackpy.devices.flock.driver import Sample
+from jackpy.devices.flock.protocol import Format, Record, angles_from_rotation
+from jackpy.errors import DeviceError, ParseError
+
+MAGIC = "flock-recording"
+
+
+class Recorder:
+    """Append samples to ``path`` (thread-safe; use :meth:`add` as a driver listener)."""
+
+    def __init__(self, path: str | os.PathLike, meta: Mapping[str, Any] | None = None,
+                 flush_interval: float = 1.0) -> None:
+        self.path = Path(path)
+        header = {"jackpy": MAGIC, "version": 1, "created": time.strftime("%Y-%m-%dT%H:%M:%S%z"),
+                  "units": "inches, 16-bit record words, transmitter frame", **(meta or {})}
+        tmp = self.path.with_name(self.path.name + ".tmp")
+        try:
+            with open(tmp, "w", encoding="utf-8") as f:
+                f.write(json.dumps(header) + "\n")
+                f.flush()
+                os.fsync(f.fileno())
+            os.replace(tmp, self.path)
+            self._file = open(self.path, "a", encoding="utf-8")
+        except OSError as exc:
+            raise DeviceError(f"cannot write recording {self.path}: {exc.strerror}") from None
+        self._lock = threading.Lock()
+        self._t0: float | None = None
+        self.count = 0
+        self._closed = threading.Event()
+        self._flusher = threading.Thread(target=self._flush_loop, args=(flush_interval,),
+                                         name="flock-recorder", daemon=True)
+        self._flusher.start()
+
+    def add(self, sample: Sample) -> None:
+        """Append one sample; its time is taken relative to the first sample recorded."""
+        rec = sample.record
+        with self._lock:
+            if self._closed.is_set():
+                return
+            if self._t0 is None:
+                self._t0 = sample.time
+            row = [round(sample.time - self._t0, 6), sample.bird, sample.seq, chr(rec.format),
+                   rec.scale, list(rec.words), rec.button, rec.metal]
+            self._file.write(json.dumps(row, separators=(",", ":")) + "\n")
+            self.count += 1
+
+    def flush(self) -> None:
+        """Push everything written so far to disk."""
+        with self._lock:
+            if not self._file.closed:
+                self._file.flush()
+                os.fsync(self._file.fileno())
+
+    def _flush_loop(self, interval: float) -> None:
+        while not self._closed.wait(interval):
+            self.flush()
+
+    def close(self) -> None:
+        self.flush()
+        with self._lock:
+            self._closed.set()
+            self._file.close()
+
+    def __enter__(self) -> Recorder:
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.close()
+
+
+@dataclass
+class Recording:
+    """A recording read back: its header and samples (``Sample.time`` = seconds from start)."""
+
+    header: dict[str, Any]
+    samples: list[Sample]
+
+    def __post_init__(self) -> None:
+        self._per_bird: dict[int, list[Sample]] = {}
+        for s in self.samples:
+            self._per_bird.setdefault(s.bird, []).append(s)
+        self._times = {b: np.array([s.time for s in v]) for b, v in self._per_bird.items()}
+
+    @property
+    def birds(self) -> list[int]:
+        return sorted({s.bird for s in self.samples})
+
+    @property
+    def duration(self) -> float:
+        return self.samples[-1].time if self.samples else 0.0
+
+    def frames(self) -> list[dict[int, Sample]]:
+        """Samples grouped by measurement cycle: a new frame starts when a bird repeats."""
+        frames: list[dict[int, Sample]] = []
+        cur: dict[int, Sample] = {}
+        for s in self.samples:
+            if s.bird in cur:
+                frames.append(cur)
+                cur = {}
+            cur[s.bird] = s
+        if cur:
+            frames.append(cur)
+        return frames
+
+    def pose_at(self, t: float, bird: int) -> tuple[tuple[float, float, float], tuple[float, float, float]]:
+        """(position in inches, angles in degrees) of ``bird`` at ``t`` s, looping the recording;
+        usable as a simulator motion."""
+        mine = self._per_bird.get(bird)
+        if not mine:
+            return (0.0, 0.0, 0.0), (0.0, 0.0, 0.0)
+        times = self._times[bird]
+        t = t % (self.duration or 1.0)
+        rec = mine[max(0, int(np.searchsorted(times, t, side="right")) - 1)].record
+        pos = rec.position or (0.0, 0.0, 0.0)
+        r = rec.rotation()
+        ang = tuple(np.degrees(angles_from_rotation(r))) if r is not None else (0.0, 0.0, 0.0)
+        return pos, ang  # type: ignore[return-value]
+
+
+def read_recording(path: str | os.PathLike) -> Recording:
+    """Read a recording; a malformed line raises :class:`ParseError` (a torn last line is skipped)."""
+    name = str(path)
+    try:
+        text = Path(path).read_text(encoding="utf-8")
+    except OSError as exc:
+        raise DeviceError(f"cannot read recording {name}: {exc.strerror}") from None
+    except UnicodeDecodeError:
+        raise ParseError("not a text file", name, 1, 1) from None
+    lines = text.split("\n")
+    torn = lines[-1] != ""  # no final newline: the last line may have been cut by a crash
+    lines = lines[:-1] if not torn else lines
+    try:
+        header = json.loads(lines[0]) if lines else None
+    except json.JSONDecodeError:
+        header = None
+    if not isinstance(header, dict) or header.get("jackpy") != MAGIC:
+        raise ParseError("not a jackpy Flock recording (bad header line)", name, 1, 1)
+    samples = []
+    for k, line in enumerate(lines[1:], start=2):
+        try:
+            t, bird, seq, fmt, scale, words, button, metal = json.loads(line)
+            fm = Format(ord(fmt))
+            if len(words) != fm.words or not all(-32768 <= w <= 32767 for w in words):
+                raise ValueError(f"{fm.name.lower()} needs {fm.words} words in -32768..32767")
+            rec = Record(fm, tuple(int(w) for w in words), float(scale), button, metal, int(bird))
+            samples.append(Sample(int(bird), rec, float(t), int(seq)))
+        except (ValueError, TypeError) as exc:
+            if torn and k == len(lines):
+                break
+            col = exc.colno if isinstance(exc, json.JSONDecodeError) else 1
+            raise ParseError(f"bad sample line: {exc}", name, k, col) from None
+    return Recording(header, samples)
+
+
+def replay(recording: Recording, speed: float = 1.0) -> Iterator[dict[int, Sample]]:
+    """Yield the recording's frames; with ``speed`` > 0 paced in real time (×speed), with
+    ``speed`` = 0 as fast as the caller takes them (frame by frame)."""
+    start = time.perf_counter()
+    for frame in recording.frames():
+        if speed > 0:
+            t = min(s.time for s in frame.values()) / speed
+            delay = start + t - time.perf_counter()
+            if delay > 0:
+                time.sleep(delay)
+        yield frame
