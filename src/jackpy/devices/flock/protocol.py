@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import enum
 import re
+import struct
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
@@ -474,6 +475,16 @@ class BirdLayout:
 _PHASE = re.compile(rb"[\x80-\xff]")
 
 
+def _word_table() -> tuple[int, ...]:
+    """Signed word for every raw little-endian byte pair (phasing bits ignored)."""
+    v = np.arange(65536, dtype=np.int64)
+    u = ((v & 0x7F00) << 1) | ((v & 0x7F) << 2)
+    return tuple(int(w) for w in np.where(u & 0x8000, u - 0x10000, u))
+
+
+_WORD = _word_table()
+
+
 class StreamDecoder:
     """Incremental record parser that frames on the phasing bit (spec §4.2).
 
@@ -493,6 +504,7 @@ class StreamDecoder:
         self.layouts = dict(layouts)
         addrs = sorted(self.layouts)
         self._lengths = {a: self.layouts[a].length(group) for a in addrs}
+        self._structs = {a: struct.Struct(f"<{self.layouts[a].format.words}H") for a in addrs}
         # candidate order after each address: the next address first, then the others
         self._order = {a: addrs[i + 1:] + addrs[:i + 1] for i, a in enumerate(addrs)}
         self._next = self._order[addrs[-1]]
@@ -536,9 +548,9 @@ class StreamDecoder:
                 i = m.start() if m else n
                 continue
             lay = self.layouts[addr]
-            nw = lay.format.words
-            words = unpack_words(buf, i, nw)
-            k = i + 2 * nw
+            unpack = self._structs[addr]
+            words = tuple(map(_WORD.__getitem__, unpack.unpack_from(buf, i)))
+            k = i + unpack.size
             button = metal = None
             if lay.button:
                 button = buf[k]
