@@ -1,0 +1,133 @@
+"""Transform primitives of the Peabody text format, their units, and the row-vector product rule.
+
+A primitive is ``(name, args)`` with ``args`` in *file* units (centimetres, degrees):
+
+=========== ===================== =============================================================
+name        args                  column-vector matrix (metres, radians inside)
+=========== ===================== =============================================================
+``trans``   x, y, z (cm)          translation by (x, y, z) / 100
+``scale``   sx, sy, sz            ``diag(sx, sy, sz, 1)``
+``rotx``    angle (deg)           right-handed rotation about x (``roty``, ``rotz`` likewise)
+``rot``     ax, ay, az, angle     rotation about the axis (ax, ay, az) by angle degrees
+``matrix``  16 numbers            the 4x4 in Peabody's *row-vector* form, row-major, translation
+                                  (cm) in the last row; its transpose is the column form
+=========== ===================== =============================================================
+
+Product rule. Peabody multiplies row vectors (``p' = p A B``), so the file's ``A * B * C`` is
+applied left to right: ``A`` first, then ``B`` about the fixed frame, then ``C``. In our column
+convention that is ``C @ B @ A`` (:func:`compose`). Example: ``trans(10cm,0cm,0cm) * rotz(90)``
+translates to (0.1, 0, 0) and then rotates that point about the z axis to (0, 0.1, 0).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from scipy.spatial.transform import Rotation
+
+from jackpy.peabody.transforms import rotation, scaling, translation
+
+Prim = tuple[str, tuple[float, ...]]
+
+#: length units and their size in centimetres (file lengths default to cm)
+LENGTH_UNITS = {"cm": 1.0, "mm": 0.1, "m": 100.0, "in": 2.54}
+#: angle units and their size in degrees (file angles default to degrees)
+ANGLE_UNITS = {"deg": 1.0, "rad": 180.0 / math.pi}
+CM = 0.01            # metres per centimetre
+DEG = math.pi / 180  # radians per degree
+#: argument kinds of each primitive: "L" length, "A" angle, "N" plain number
+PRIM_ARGS = {"trans": "LLL", "scale": "NNN", "rotx": "A", "roty": "A", "rotz": "A",
+             "rot": "NNNA", "matrix": "N" * 16}
+RIGID_PRIMS = ("trans", "rotx", "roty", "rotz", "rot", "matrix")
+
+
+def prim_matrix(prim: Prim) -> np.ndarray:
+    """The 4x4 column-vector matrix (metres, radians) of one primitive in file units."""
+    name, a = prim
+    if name == "trans":
+        return translation(a[0] * CM, a[1] * CM, a[2] * CM)
+    if name == "scale":
+        return scaling(*a)
+    if name in ("rotx", "roty", "rotz"):
+        return rotation(name[-1], a[0] * DEG)
+    if name == "rot":
+        return rotation(np.array(a[:3]), a[3] * DEG)
+    if name == "matrix":
+        m = np.array(a, dtype=float).reshape(4, 4).T.copy()
+        m[:3, 3] *= CM
+        return m
+    raise ValueError(f"unknown transform primitive {name!r}")
+
+
+def compose(prims: list[Prim]) -> np.ndarray:
+    """Column matrix of the file product ``p1 * p2 * ... * pn``, i.e. ``pn @ ... @ p2 @ p1``."""
+    out = np.eye(4)
+    for p in prims:
+        out = prim_matrix(p) @ out
+    return out
+
+
+def _rotation_prims(r: np.ndarray) -> list[Prim]:
+    rotvec = Rotation.from_matrix(r).as_rotvec()
+    angle = float(np.linalg.norm(rotvec))
+    if angle < 1e-15:
+        return []
+    axis = rotvec / angle
+    deg = math.degrees(angle)
+    for k, name in enumerate(("rotx", "roty", "rotz")):
+        if abs(abs(axis[k]) - 1.0) < 1e-13:
+            return [(name, (math.copysign(deg, axis[k]),))]
+    return [("rot", (float(axis[0]), float(axis[1]), float(axis[2]), deg))]
+
+
+def _matrix_prim(m: np.ndarray) -> Prim:
+    row = m.copy()
+    row[:3, 3] /= CM
+    return ("matrix", tuple(float(v) for v in row.T.reshape(-1)))
+
+
+def decompose(m: np.ndarray, tol: float = 1e-10) -> list[Prim]:
+    """File primitives that :func:`compose` back to ``m`` within ``tol`` (metres).
+
+    Rigid: ``rot... * trans(...)``; rotation-scale: ``scale(...) * rot... * trans(...)``; anything
+    else a ``matrix(...)``. An identity gives ``[trans(0,0,0)]``.
+    """
+    m = np.asarray(m, dtype=float)
+    prims: list[Prim] | None = None
+    if np.allclose(m[3], (0, 0, 0, 1), atol=1e-15, rtol=0):
+        lin = m[:3, :3]
+        s = np.linalg.norm(lin, axis=0)
+        if np.all(s > 1e-12):
+            r = lin / s
+            if np.linalg.det(r) < 0:
+                s[0], r[:, 0] = -s[0], -r[:, 0]
+            if np.allclose(r.T @ r, np.eye(3), atol=1e-12, rtol=0):
+                prims = []
+                if not np.allclose(s, 1.0, atol=1e-15, rtol=0):
+                    prims.append(("scale", tuple(float(v) for v in s)))
+                prims += _rotation_prims(r)
+                t = m[:3, 3] / CM
+                if np.any(t != 0.0) or not prims:
+                    prims.append(("trans", tuple(float(v) for v in t)))
+                if not np.allclose(compose(prims), m, atol=tol, rtol=0):
+                    prims = None
+    return prims if prims is not None else [_matrix_prim(m)]
+
+
+def fmt(v: float) -> str:
+    """A float as short exact-enough text (15 significant digits, no ``-0``)."""
+    if not math.isfinite(v):
+        raise ValueError(f"cannot write the non-finite value {v}")
+    s = format(v, ".15g")
+    return "0" if s in ("-0", "0") else s
+
+
+def prims_text(prims: list[Prim]) -> str:
+    """Peabody text of a primitive product, with units (``rotx(90) * trans(1cm,0cm,2cm)``)."""
+    parts = []
+    for name, args in prims:
+        kinds = PRIM_ARGS[name]
+        parts.append(f"{name}(" + ",".join(fmt(a) + ("cm" if k == "L" else "")
+                                          for a, k in zip(args, kinds)) + ")")
+    return " * ".join(parts)

@@ -1,0 +1,123 @@
+"""Psurf geometry files (``.pss``) and other mesh formats, loaded into :class:`Mesh` (metres).
+
+The ``.pss`` format (jackpy's psurf text, see docs/peabody-format.md) is a polygon mesh in
+centimetres in the psurf's own frame, one record per line::
+
+    # a comment (also // to the end of the line)
+    v X Y Z              vertex, centimetres
+    f I J K [L ...]      polygon: 1-based vertex indices, counter-clockwise seen from outside
+
+Polygons are triangulated as fans on reading (so they should be convex). ``.obj``, ``.stl`` and
+``.ply`` files are read through trimesh in centimetres as well (they carry no unit); ``.glb`` and
+``.gltf`` are metres, as glTF specifies.
+"""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+
+import numpy as np
+
+from jackpy.atomic import atomic_write_text
+from jackpy.errors import ImportCADError, ParseError
+from jackpy.peabody.geometry import Mesh
+from jackpy.peabody.notation import CM, fmt
+
+#: mesh file extensions read through trimesh, with the size of one file unit in metres
+TRIMESH_UNITS = {".obj": CM, ".stl": CM, ".ply": CM, ".glb": 1.0, ".gltf": 1.0}
+
+
+def parse_psurf(text: str, filename: str = "<string>") -> Mesh:
+    """Parse ``.pss`` text into a triangle mesh in metres; ParseError with line and column."""
+    vertices: list[tuple[float, float, float]] = []
+    faces: list[tuple[int, int, int]] = []
+    for lineno, raw in enumerate(text.splitlines(), start=1):
+        line = raw
+        for marker in ("#", "//"):
+            cut = line.find(marker)
+            if cut >= 0:
+                line = line[:cut]
+        fields: list[tuple[str, int]] = []
+        pos = 0
+        for word in line.split():
+            pos = line.index(word, pos)
+            fields.append((word, pos + 1))
+            pos += len(word)
+        if not fields:
+            continue
+        (key, kcol), args = fields[0], fields[1:]
+        if key == "v":
+            if len(args) != 3:
+                col = args[3][1] if len(args) > 3 else len(line.rstrip()) + 1
+                what = "end of line" if len(args) > 3 else "three coordinates (cm)"
+                raise ParseError(f"expected {what} after 'v'", filename, lineno, col)
+            xyz = []
+            for word, col in args:
+                try:
+                    value = float(word)
+                except ValueError:
+                    value = float("nan")
+                if not np.isfinite(value):
+                    raise ParseError(f"expected a coordinate (cm), found {word!r}", filename, lineno, col)
+                xyz.append(value * CM)
+            vertices.append((xyz[0], xyz[1], xyz[2]))
+        elif key == "f":
+            if len(args) < 3:
+                raise ParseError("expected at least 3 vertex indices after 'f'", filename, lineno,
+                                 len(line.rstrip()) + 1)
+            idx = []
+            for word, col in args:
+                if not (word.isascii() and word.isdigit()) or not 1 <= int(word) <= len(vertices):
+                    raise ParseError(f"expected a vertex index in 1..{len(vertices)}, found {word!r}",
+                                     filename, lineno, col)
+                idx.append(int(word) - 1)
+            faces.extend((idx[0], idx[k], idx[k + 1]) for k in range(1, len(idx) - 1))
+        else:
+            raise ParseError(f"expected 'v' or 'f', found {key!r}", filename, lineno, kcol)
+    return Mesh(np.array(vertices, dtype=float).reshape(-1, 3), np.array(faces, dtype=np.int64).reshape(-1, 3))
+
+
+def read_psurf(path: str | os.PathLike[str]) -> Mesh:
+    """Read a ``.pss`` file (centimetres) into a mesh in metres."""
+    return parse_psurf(Path(path).read_text(encoding="utf-8"), str(path))
+
+
+def psurf_to_text(mesh: Mesh, comment: str | None = None) -> str:
+    """``.pss`` text of a mesh (vertices written in centimetres, triangles as faces)."""
+    lines = [f"# {c}" for c in (comment.splitlines() if comment else [])]
+    lines += ["v " + " ".join(fmt(x / CM) for x in v) for v in mesh.vertices]
+    lines += ["f " + " ".join(str(int(i) + 1) for i in f) for f in mesh.faces]
+    return "\n".join(lines) + "\n"
+
+
+def write_psurf(path: str | os.PathLike[str], mesh: Mesh, comment: str | None = None) -> None:
+    """Write a mesh as a ``.pss`` file, atomically."""
+    atomic_write_text(path, psurf_to_text(mesh, comment))
+
+
+def load_mesh(path: str | os.PathLike[str]) -> Mesh:
+    """Load geometry by extension: ``.pss`` (cm), ``.obj``/``.stl``/``.ply`` (cm) or ``.glb``/``.gltf`` (m).
+
+    The result is in metres. A malformed ``.pss`` raises ParseError; a file trimesh cannot read
+    raises ImportCADError; a missing file raises FileNotFoundError.
+    """
+    p = Path(path)
+    ext = p.suffix.lower()
+    if ext == ".pss":
+        return read_psurf(p)
+    if ext not in TRIMESH_UNITS:
+        raise ImportCADError(f"{p}: unknown geometry format {ext!r} (use .pss, "
+                             + ", ".join(TRIMESH_UNITS) + ")")
+    if not p.exists():
+        raise FileNotFoundError(f"{p}: no such file")
+    import trimesh
+
+    try:
+        loaded = trimesh.load(str(p), force="mesh", process=False)
+    except Exception as exc:  # trimesh raises many kinds of error for a bad file
+        raise ImportCADError(f"{p}: cannot read mesh: {exc}") from exc
+    if not isinstance(loaded, trimesh.Trimesh):
+        raise ImportCADError(f"{p}: no triangle mesh found")
+    return Mesh(np.asarray(loaded.vertices, dtype=float) * TRIMESH_UNITS[ext],
+                np.asarray(loaded.faces, dtype=np.int64))
