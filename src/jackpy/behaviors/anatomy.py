@@ -1,0 +1,122 @@
+"""Which segments, sites and joints of a figure the behaviors use (feet, pelvis, chest, head, hands).
+
+Behaviors never hard-code names; they read an :class:`Anatomy`. :func:`synthetic_anatomy` fits
+:func:`jackpy.peabody.synthetic.human_like_tree` (adding the few sites it lacks);
+:func:`human_anatomy` fits :func:`jackpy.body.make_human`. Local vectors are in the named segment's
+base frame; lengths in metres, angles in radians.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from jackpy.peabody.model import Figure
+from jackpy.peabody.transforms import translation
+
+SIDES = ("left", "right")
+
+
+@dataclass
+class FootSpec:
+    """One foot: ``ball`` carries the toe constraint and is the root site when this foot roots the
+    figure; ``heel`` carries the heel-height constraint; ``heel``, ``ball`` and ``toe`` spread by
+    ``half_width`` sideways give the footprint. ``forward``/``up`` are the foot's local axes."""
+
+    segment: str
+    ball: tuple[str, str]
+    heel: tuple[str, str]
+    toe: tuple[str, str]
+    half_width: float
+    forward: np.ndarray
+    up: np.ndarray
+    joints: list[str]
+
+
+@dataclass
+class Digit:
+    """One finger or the thumb: its flexion DOFs proximal to distal as (joint, DOF index, sign
+    that closes), its segments, and its radius (m) for contact."""
+
+    name: str
+    flex: list[tuple[str, int, float]]
+    segments: list[str]
+    radius: float = 0.008
+
+
+@dataclass
+class HandSpec:
+    """One hand: ``palm`` site (palm centre; ``normal``, ``fingers`` and ``thumb_side`` are local unit
+    vectors of its segment: out of the palm, along the fingers, towards the thumb), the arm's joints
+    (proximal to distal) and the digits (thumb first)."""
+
+    palm: tuple[str, str]
+    normal: np.ndarray
+    fingers: np.ndarray
+    thumb_side: np.ndarray
+    arm_joints: list[str]
+    digits: list[Digit]
+    shoulder: tuple[str, str]
+
+
+@dataclass
+class Anatomy:
+    """The named parts behaviors act on.
+
+    ``chest`` is an upper-torso site kept vertical (``chest_up`` its segment-local up);
+    ``view`` the between-the-eyes site whose local ``view_forward`` the head aims;
+    ``eyes`` the eyeball segments (local forward ``eye_forward``) with their joints;
+    ``springs`` are (joint, DOF index, extension angle, sign of flexion) of knees and elbows.
+    """
+
+    pelvis: str
+    pelvis_site: str
+    pelvis_forward: np.ndarray
+    pelvis_up: np.ndarray
+    chest: tuple[str, str]
+    chest_up: np.ndarray
+    view: tuple[str, str]
+    view_forward: np.ndarray
+    neck_joints: list[str]
+    eyes: dict[str, str]
+    eye_joints: dict[str, str]
+    eye_forward: np.ndarray
+    feet: dict[str, FootSpec]
+    hands: dict[str, HandSpec]
+    springs: list[tuple[str, int, float, float]]
+    leg_length: float
+    spine_group: str | None = None
+    spine_joints: list[str] = field(default_factory=list)
+
+
+def synthetic_anatomy(figure: Figure) -> Anatomy:
+    """Anatomy of the synthetic 69-segment tree (adds heel, toe, view and palm sites to ``figure``)."""
+    X, Y, Z = np.eye(3)
+    head = figure.segment("head")
+    if "view" not in head.sites:
+        head.add_site("view", translation(0.0, 0.1, 0.08))
+    feet, hands = {}, {}
+    for side, sx in (("left", 1.0), ("right", -1.0)):
+        foot = figure.segment(f"foot_{side}")
+        if "heel" not in foot.sites:
+            foot.add_site("heel", translation(0.0, -0.08, -0.04))
+        feet[side] = FootSpec(f"foot_{side}", (f"foot_{side}", "ball"), (f"foot_{side}", "heel"),
+                              (f"toes_{side}", "tip"), 0.045, Z.copy(), Y.copy(),
+                              [f"hip_{side}", f"knee_{side}", f"ankle_{side}", f"toes_{side}"])
+        palm = figure.segment(f"palm_{side}")
+        if "centre" not in palm.sites:
+            palm.add_site("centre", translation(0.0, -0.05, 0.0))
+        digits = [Digit(f"d{d}", [(f"finger{d}{p}_{side}", 0, 1.0) for p in range(3)],
+                        [f"finger{d}{p}_{side}" for p in range(3)]) for d in range(5)]
+        hands[side] = HandSpec((f"palm_{side}", "centre"), -Z.copy(), -Y.copy(), sx * X,
+                               [f"clavicle_{side}", f"shoulder_{side}", f"elbow_{side}", f"wrist_{side}"],
+                               digits, (f"upperarm_{side}", "base"))
+    figure.topology_changed()
+    springs = [(f"knee_{s}", 0, 0.0, 1.0) for s in SIDES] + [(f"elbow_{s}", 0, 0.0, -1.0) for s in SIDES]
+    return Anatomy(
+        pelvis="pelvis", pelvis_site="base", pelvis_forward=Z.copy(), pelvis_up=Y.copy(),
+        chest=("vertebra17", "base"), chest_up=Y.copy(), view=("head", "view"), view_forward=Z.copy(),
+        neck_joints=["neck", "head"], eyes={s: f"eye_{s}" for s in SIDES},
+        eye_joints={s: f"eye_{s}" for s in SIDES}, eye_forward=Z.copy(), feet=feet, hands=hands,
+        springs=springs, leg_length=0.94, spine_joints=[f"spine{k + 1}" for k in range(17)])

@@ -1,0 +1,71 @@
+"""Feet: planted feet stay put ([SH4] §4.1.1 Table 4.2; [PB91] §4.1, §6; behaviors.md §2.3).
+
+Each foot not rooting the figure gets a *toe constraint* at its ball site and a *heel constraint*:
+
+- ``pivot`` (default): ball position + sole flat (foot up = world up), yaw free;
+- ``hold``: ball position and full orientation (for a foot off the floor or one being dragged);
+- heel ``floor`` (default): the heel site on the floor plane (point-to-plane, so it may slide with
+  the foot); ``free``: no heel constraint, the heel may rise.
+
+The rooted foot needs no goal: the IK cannot move the root. Feet goals are on the highest priority
+level, so COM, pelvis and torso goals never pull a planted foot. After the solve a pivoting foot's
+stored goal takes the yaw it turned to (its position stays), so the support polygon follows it.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from jackpy.behaviors.base import BehaviorBase, param
+from jackpy.ik.goals import Orientation, Plane, Position
+
+if TYPE_CHECKING:
+    from jackpy.behaviors.loop import Frame
+
+UP = np.array([0.0, 1.0, 0.0])
+
+
+@dataclass
+class FeetParams:
+    weight: float = param(10.0, "weight of the toe and heel constraints", "", (0.0, 1e4))
+    level: int = param(0, "priority level of the feet goals (0 = highest)", "", (0, 3))
+
+
+class Feet(BehaviorBase):
+    """Holds every non-root foot at its goal (toe constraint + heel on floor)."""
+
+    name = "feet"
+    order = 20
+
+    def __init__(self, params: FeetParams | None = None, enabled: bool = True) -> None:
+        super().__init__(params or FeetParams(), enabled)
+
+    def update(self, frame: "Frame") -> None:
+        st, p = frame.state, self.params
+        for side, spec in frame.anatomy.feet.items():
+            if side == st.root:
+                continue
+            fs = st.feet[side]
+            ball = f"{spec.ball[0]}.{spec.ball[1]}"
+            frame.body.append((Position(ball, fs.target, weight=p.weight, name=f"toe {side}"), p.level))
+            if fs.mode == "hold":
+                frame.body.append((Orientation(ball, fs.target[:3, :3], weight=p.weight,
+                                               name=f"toe frame {side}"), p.level))
+            else:
+                up_w = fs.target[:3, :3] @ (frame.figure.site_location(*spec.ball)[:3, :3].T @ spec.up)
+                frame.body.append((frame.keep_direction(*spec.ball, spec.up, up_w, p.weight, f"sole {side}"),
+                                   p.level))
+            if fs.heel == "floor":
+                heel = frame.loop.heel_point(side, fs.target)
+                frame.body.append((Plane(f"{spec.heel[0]}.{spec.heel[1]}", heel, UP, weight=p.weight,
+                                         name=f"heel {side}"), p.level))
+
+    def finish(self, frame: "Frame") -> None:
+        for side, spec in frame.anatomy.feet.items():
+            fs = frame.state.feet[side]
+            if fs.mode == "pivot":
+                now = frame.site(*spec.ball)
+                fs.target = np.vstack([np.hstack([now[:3, :3], fs.target[:3, 3:4]]), [0, 0, 0, 1]])

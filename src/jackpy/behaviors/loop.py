@@ -1,0 +1,274 @@
+"""The per-frame behavior loop ([SH4] §4.1, Fig. 4.1; [PB91] §4; behaviors.md §2.2).
+
+One :meth:`BehaviorLoop.step` is one iteration of Jack's control loop with time frozen:
+
+1. input has already written goals into :class:`~jackpy.behaviors.state.BehaviorState`
+   (the manipulation commands of :mod:`jackpy.behaviors.manipulation`);
+2. every enabled behavior's ``update`` runs in ``order``: automatic root (10), feet (20), pelvis
+   (30), balance (40), stepping (50, active), torso (60), gaze (70), hands (80), limit springs (90);
+   each reads the figure and adds goals to the frame's passes;
+3. the solve, inside the centre-of-mass fixed-point loop ([PB91] §4.3): the **body pass** (legs and
+   spine: feet, balance, pelvis, torso; arms, neck and hands frozen), then the **head pass** (neck
+   and eyes), then one **arm pass** per hand with the body frozen ([SH4] §4.1.1); the COM is then
+   recomputed and, if it has left the balance line by more than ``com_tolerance``, the passes
+   repeat (at most ``max_passes``; the book seldom needs more than two);
+4. every enabled behavior's ``finish`` runs (attached objects follow hands, steps advance).
+
+The loop knows nothing of windows; it reports what it did in a :class:`FrameReport`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from jackpy.behaviors.anatomy import SIDES, Anatomy
+from jackpy.behaviors.base import Behavior, BehaviorBase
+from jackpy.behaviors.state import BehaviorState, FootState, HandState
+from jackpy.behaviors.support import BalanceFrame, convex_hull, floor
+from jackpy.ik import Problem, solve
+from jackpy.ik.goals import Aim, CentreOfMass, Goal
+from jackpy.peabody.model import Figure
+
+#: foot points lower than this (m) touch the floor
+CONTACT_HEIGHT = 0.02
+#: distance (m) of the aim point of a direction goal
+FAR = 1.0e3
+
+
+@dataclass
+class FrameReport:
+    """What one frame did: passes of the COM loop, the COM's horizontal distance from the balance
+    line after the last pass (m), the root, balance parameters of the COM, notes of behaviors
+    (root switches, steps) and the residual error of each pass's goals (m and deg)."""
+
+    passes: int
+    com_error: float
+    root: str
+    balance: tuple[float, float]
+    notes: list[str] = field(default_factory=list)
+    errors: dict[str, tuple[float, float]] = field(default_factory=dict)
+
+
+class Frame:
+    """One frame's scratch space: the posture at the frame start and the goals of each pass."""
+
+    def __init__(self, loop: "BehaviorLoop") -> None:
+        self.loop = loop
+        self.figure: Figure = loop.figure
+        self.anatomy: Anatomy = loop.anatomy
+        self.state: BehaviorState = loop.state
+        self.body: list[tuple[Goal, int]] = []
+        self.head: list[tuple[Goal, int]] = []
+        self.arms: dict[str, list[tuple[Goal, int]]] = {s: [] for s in SIDES}
+        self.com_goal: np.ndarray | None = None
+        self.com_weight = 1.0
+        self.com_level = 1
+        self.spine_free = True
+        self.notes: list[str] = []
+        self._refresh()
+
+    def _refresh(self) -> None:
+        kin = self.figure.kinematics()
+        self.fk = kin.forward(self.figure.q, self.figure.location)
+        self.com = kin.centre_of_mass(self.fk)
+        self._balance: BalanceFrame | None = None
+
+    # ----- reading the posture -----------------------------------------------------------------
+    def site(self, seg: str, site: str) -> np.ndarray:
+        """World 4x4 of ``seg.site`` at the frame start."""
+        kin = self.figure.kinematics()
+        return self.fk.segments[kin.segment_index[seg]] @ self.figure.site_location(seg, site)
+
+    def segment(self, seg: str) -> np.ndarray:
+        """World 4x4 of a segment's base frame at the frame start."""
+        kin = self.figure.kinematics()
+        return self.fk.segments[kin.segment_index[seg]]
+
+    def balance_frame(self) -> BalanceFrame:
+        """Balance line and support polygon from the feet's goals (where planted feet are)."""
+        if self._balance is None:
+            self._balance = self.loop.balance_frame_for({s: f.target for s, f in self.state.feet.items()})
+        return self._balance
+
+    def balance_params(self) -> tuple[float, float]:
+        """(x, z) of the current COM."""
+        return self.balance_frame().params(floor(self.com))
+
+    def feet_height(self) -> float:
+        """Floor height under the feet (m): the lower of the two ball goals."""
+        return min(f.target[1, 3] for f in self.state.feet.values())
+
+    # ----- acting --------------------------------------------------------------------------------
+    def set_root(self, root: str) -> None:
+        """Re-root through ``"left"``/``"right"`` foot (ball site) or ``"pelvis"``; keeps the world still."""
+        self.loop.set_root(root)
+        self._refresh()
+
+    def note(self, text: str) -> None:
+        self.notes.append(text)
+
+    def keep_direction(self, seg: str, site: str, axis: np.ndarray, direction: np.ndarray,
+                       weight: float = 1.0, name: str | None = None) -> Aim:
+        """A goal turning segment-local ``axis`` of ``seg`` to the world ``direction`` (an aim at a
+        point :data:`FAR` away, so only the direction matters; rotation about it stays free)."""
+        loc = self.figure.site_location(seg, site)
+        origin = self.site(seg, site)[:3, 3]
+        d = np.asarray(direction, dtype=float)
+        return Aim(f"{seg}.{site}", origin + FAR * d / np.linalg.norm(d), axis=loc[:3, :3].T @ axis,
+                   weight=weight, name=name)
+
+
+class BehaviorLoop:
+    """Runs behaviors and the IK once per frame for one figure.
+
+    ``behaviors`` defaults to :func:`jackpy.behaviors.default_behaviors`; the initial state takes the
+    feet where they stand, the balance point under the current COM and the root at the loaded foot.
+    """
+
+    def __init__(self, figure: Figure, anatomy: Anatomy, behaviors: Iterable[Behavior] | None = None,
+                 max_passes: int = 3, com_tolerance: float = 0.002, max_iterations: int = 30,
+                 tol_position: float = 2e-4) -> None:
+        from jackpy.behaviors import default_behaviors
+
+        self.figure = figure
+        self.anatomy = anatomy
+        self.behaviors: list[Behavior] = list(default_behaviors() if behaviors is None else behaviors)
+        self.max_passes = max_passes
+        self.com_tolerance = com_tolerance
+        self.max_iterations = max_iterations
+        self.tol_position = tol_position
+        self.state = BehaviorState()
+        self._footprints = self._footprint_locals()
+        self._locked = self._pass_locks()
+        self.reset_state()
+
+    # ----- set-up ---------------------------------------------------------------------------------
+    def _footprint_locals(self) -> dict[str, np.ndarray]:
+        """Footprint corners and the reference point (rows) in each foot's ball-site frame."""
+        out = {}
+        self._heel_local: dict[str, np.ndarray] = {}
+        for side, spec in self.anatomy.feet.items():
+            ball = self.figure.site_world(*spec.ball)
+            inv = np.linalg.inv(ball)
+            pts = []
+            lateral = np.cross(spec.up, spec.forward)
+            seg_w = self.figure.world_transforms()[spec.segment]
+            for seg, site in (spec.heel, spec.ball, spec.toe):
+                w = self.figure.site_world(seg, site)[:3, 3]
+                for s in (-1.0, 1.0):
+                    p = w + s * spec.half_width * (seg_w[:3, :3] @ lateral)
+                    pts.append(inv[:3, :3] @ p + inv[:3, 3])
+            heel = self.figure.site_world(*spec.heel)[:3, 3]
+            self._heel_local[side] = inv[:3, :3] @ heel + inv[:3, 3]
+            ref = 0.5 * (heel + ball[:3, 3])
+            pts.append(inv[:3, :3] @ ref + inv[:3, 3])
+            out[side] = np.array(pts)
+        return out
+
+    def _pass_locks(self) -> dict[str, list[str]]:
+        """Joints each pass locks: all but its own (body: legs and spine; legs; head: neck and
+        eyes; each arm)."""
+        a = self.anatomy
+        legs = [j for f in a.feet.values() for j in f.joints]
+        own = {"body": legs + list(a.spine_joints), "legs": legs,
+               "head": list(a.neck_joints) + list(a.eye_joints.values())}
+        for side, h in a.hands.items():
+            own[side] = list(h.arm_joints)
+        return {k: [j for j in self.figure.joints if j not in set(v)] for k, v in own.items()}
+
+    def reset_state(self) -> None:
+        """State from the current posture: feet planted where they are, balance point under the COM."""
+        st = self.state
+        st.feet = {s: FootState(self.figure.site_world(*f.ball)) for s, f in self.anatomy.feet.items()}
+        st.hands = {s: HandState() for s in self.anatomy.hands}
+        bf = self.balance_frame_for({s: f.target for s, f in st.feet.items()})
+        x, z = bf.params(floor(self.figure.centre_of_mass()))
+        st.balance = (x, z)
+        st.balance_point = bf.point(x, z)
+        st.pelvis_goal = None
+        self.set_root("right" if x >= 0.5 else "left")
+
+    def balance_frame_for(self, targets: dict[str, np.ndarray]) -> BalanceFrame:
+        """Balance frame of the feet at ball-site poses ``targets`` (contact: below CONTACT_HEIGHT)."""
+        refs, fwd, contact = {}, np.zeros(2), []
+        for side, t in targets.items():
+            pts = self._footprints[side] @ t[:3, :3].T + t[:3, 3]
+            refs[side] = floor(pts[-1])
+            corners = pts[:-1]
+            low = corners[corners[:, 1] < corners[:, 1].min() + CONTACT_HEIGHT]
+            contact.append(floor(low))
+            f = t[:3, :3] @ self.anatomy.feet[side].forward
+            fwd += floor(f)
+        return BalanceFrame(refs["left"], refs["right"], fwd, convex_hull(np.vstack(contact)))
+
+    def heel_point(self, side: str, target: np.ndarray) -> np.ndarray:
+        """World heel point of foot ``side`` when its ball site is at pose ``target``."""
+        return target[:3, :3] @ self._heel_local[side] + target[:3, 3]
+
+    def set_root(self, root: str) -> None:
+        """Root through a foot's ball site or the pelvis, keeping every global transform."""
+        if root == "pelvis":
+            self.figure.reroot(self.anatomy.pelvis, self.anatomy.pelvis_site)
+        else:
+            self.figure.reroot(*self.anatomy.feet[root].ball)
+        self.state.root = root
+
+    def behavior(self, name: str) -> Behavior:
+        """The behavior called ``name``."""
+        for b in self.behaviors:
+            if b.name == name:
+                return b
+        raise KeyError(f"no behavior named {name!r}")
+
+    # ----- one frame -------------------------------------------------------------------------------
+    def step(self) -> FrameReport:
+        """Run one frame: behaviors, then the passes inside the COM loop, then the finishes."""
+        frame = Frame(self)
+        active = sorted((b for b in self.behaviors if b.enabled), key=lambda b: b.order)
+        for b in active:
+            b.update(frame)
+        passes, com_err, errors = self._solve(frame)
+        frame._refresh()
+        for b in active:
+            b.finish(frame)
+        return FrameReport(passes, com_err, self.state.root, frame.balance_params(), frame.notes, errors)
+
+    def _solve(self, frame: Frame) -> tuple[int, float, dict[str, tuple[float, float]]]:
+        errors: dict[str, tuple[float, float]] = {}
+        com_err = 0.0
+        body = list(frame.body)
+        if frame.com_goal is not None:
+            body.append((CentreOfMass(frame.com_goal, weight=frame.com_weight, name="balance"), frame.com_level))
+        body_pass = "body" if frame.spine_free else "legs"
+        passes = 0
+        for passes in range(1, self.max_passes + 1):
+            errors["body"] = self._pass(body, body_pass)
+            errors["head"] = self._pass(frame.head, "head")
+            for side in SIDES:
+                errors[side] = self._pass(frame.arms[side], side)
+            if frame.com_goal is None:
+                break
+            c = self.figure.centre_of_mass()
+            com_err = float(np.hypot(c[0] - frame.com_goal[0], c[2] - frame.com_goal[2]))
+            if com_err <= self.com_tolerance:
+                break
+        return passes, com_err, errors
+
+    def _pass(self, goals: list[tuple[Goal, int]], which: str) -> tuple[float, float]:
+        """Solve ``goals`` (goal, priority level) moving only the joints of pass ``which``;
+        returns the worst residual (m, deg)."""
+        if not goals:
+            return 0.0, 0.0
+        problem = Problem(self.figure)
+        for g, level in goals:
+            problem.add(g, level)
+        problem.lock(*self._locked[which])
+        result = solve(problem, max_iterations=self.max_iterations, tol_position=self.tol_position)
+        return (max((g.metres for g in result.goals), default=0.0),
+                max((g.degrees for g in result.goals), default=0.0))
+
+
+__all__ = ["BehaviorBase", "BehaviorLoop", "Frame", "FrameReport"]
