@@ -1,0 +1,628 @@
+"""The workbench application: state, input handlers and the frame step, apart from any window.
+
+One frame (DESIGN.md): input → goals → behaviors → IK → FK → draw. The input handlers
+(:meth:`App.on_cursor_pos`, :meth:`App.on_mouse_button`, :meth:`App.on_scroll`, :meth:`App.on_key`)
+take the same arguments glfw passes to its callbacks (buttons, actions, modifier bits and key codes
+as glfw numbers) and only change goals, the camera, or, for CONTROL-rotation of a joint, one joint
+DOF within its limits. :meth:`App.step` then solves IK (time-boxed) when goals changed, and draws.
+The window (:mod:`jackpy.ui.window`) calls exactly these; tests call them with synthetic events.
+
+Mouse (default mapping, docs/workbench.md): a press on a pickable thing (hand, foot, head, pelvis,
+a goal marker, any other segment of a figure, an object) starts the Jack operator on it; a press
+on empty space navigates: left orbits, right pans, middle zooms, the wheel zooms.
+"""
+
+from __future__ import annotations
+
+import copy
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from jackpy.peabody import Environment, Figure
+from jackpy.peabody.transforms import rigid_inverse
+from jackpy.ui.camera import OrbitCamera, navigation_action, NavAction
+from jackpy.ui.manipulator import Manipulator
+from jackpy.ui.scene_view import GoalPick, Overlay, SceneView, SegmentPick, is_object
+from jackpy.ui.undo import UndoStack
+
+if TYPE_CHECKING:
+    from jackpy.ui.render import Renderer
+
+# glfw's numbers, so that this module needs no glfw import (and no display).
+MOUSE_LEFT, MOUSE_RIGHT, MOUSE_MIDDLE = 0, 1, 2
+RELEASE, PRESS, REPEAT = 0, 1, 2
+MOD_SHIFT, MOD_CONTROL, MOD_ALT = 1, 2, 4
+KEY_ESCAPE, KEY_DELETE = 256, 261
+KEY_LEFT_SHIFT, KEY_LEFT_CONTROL, KEY_RIGHT_SHIFT, KEY_RIGHT_CONTROL = 340, 341, 344, 345
+_BUTTON_NAMES = {MOUSE_LEFT: "left", MOUSE_MIDDLE: "middle", MOUSE_RIGHT: "right"}
+
+HAND_ROLES = ("right_hand", "left_hand")
+FOOT_ROLES = ("right_foot", "left_foot")
+
+EFFECTOR_SITES: dict[str, tuple[str, ...]] = {
+    # role: candidate "segment.site" names, standard human first, then the synthetic tree
+    "right_hand": ("right_palm.palm_center", "right_palm.distal", "palm_right.tip"),
+    "left_hand": ("left_palm.palm_center", "left_palm.distal", "palm_left.tip"),
+    "right_foot": ("right_foot.sole", "right_foot.heel", "foot_right.tip"),
+    "left_foot": ("left_foot.sole", "left_foot.heel", "foot_left.tip"),
+    "head": ("head.top", "head.tip"),
+    "pelvis": ("pelvis.base", "lower_torso.proximal"),
+}
+"""The end effectors the operator grabs, by role; the first existing site of each role is used."""
+
+
+@dataclass
+class Settings:
+    """User settings, saved with a session."""
+
+    literal_grab: bool = False
+    """Jack's literal operator: the grabbed origin jumps to the closest point at button-down."""
+    skeleton: bool = False
+    show_floor: bool = True
+    ik_time_budget_s: float = 0.03
+    """Time box of the per-frame IK solve (s)."""
+    mouse_mapping: str = "default"
+    autosave_s: float = 60.0
+    gizmo_local: bool = False
+    snap_translate_m: float = 0.05
+    snap_rotate_deg: float = 15.0
+
+
+@dataclass
+class GoalEntry:
+    """A goal as the workbench holds it: on ``figure``'s site ``"segment.site"``.
+
+    ``kind`` is ``"position"``, ``"orientation"`` or ``"position+orientation"``; ``target`` the
+    world 4x4 frame. ``manip`` and ``offset`` are the operator's manipulation transform ``M`` and
+    orientation offset ``O`` (``R_target = R_M @ O``, spec §2.10).
+    """
+
+    key: str
+    figure: str
+    site: str
+    kind: str
+    target: np.ndarray
+    enabled: bool = True
+    weight: float = 1.0
+    priority: int = 0
+    chain: str | None = None
+    manip: np.ndarray = field(default_factory=lambda: np.eye(4))
+    offset: np.ndarray = field(default_factory=lambda: np.eye(3))
+
+    def marker_position(self) -> np.ndarray:
+        """Where the goal marker is drawn (m)."""
+        return self.target[:3, 3]
+
+
+@dataclass
+class Snapshot:
+    """Undoable state: every figure's displacements and placement, and the goals.
+
+    ``figures`` holds whole figure copies only for commands that change a figure's structure
+    (rescale, import); otherwise ``None``.
+    """
+
+    postures: dict[str, tuple[np.ndarray, np.ndarray]]
+    goals: list[GoalEntry]
+    figures: dict[str, Figure] | None = None
+
+
+@dataclass
+class FrameStats:
+    """Timings of one frame (s)."""
+
+    solve_s: float = 0.0
+    draw_s: float = 0.0
+    iterations: int = 0
+
+
+# ---------------------------------------------------------------------- operator targets
+class GoalTarget:
+    """The operator drives a goal's manipulation transform; the goal follows (spec §2.10)."""
+
+    def __init__(self, app: "App", goal: GoalEntry) -> None:
+        self.app, self.goal = app, goal
+
+    def transform(self) -> np.ndarray:
+        return self.goal.manip
+
+    def apply(self, M: np.ndarray) -> None:
+        g = self.goal
+        g.manip = np.array(M, float)
+        g.target = g.manip.copy()
+        g.target[:3, :3] = g.manip[:3, :3] @ g.offset
+        self.app.goals_changed()
+
+    def end_primitive(self) -> None:
+        """Ratchet: re-seat the goal orientation on the end effector's actual orientation."""
+        g = self.goal
+        actual = self.app.env.figure(g.figure).site_world(*g.site.split(".", 1))
+        g.offset = g.manip[:3, :3].T @ actual[:3, :3]
+        g.target[:3, :3] = actual[:3, :3]
+
+
+class FigureTarget:
+    """The operator moves a whole figure or object by its placement, its goals coming along."""
+
+    def __init__(self, app: "App", figure: Figure) -> None:
+        self.app, self.figure = app, figure
+
+    def transform(self) -> np.ndarray:
+        return self.figure.location
+
+    def apply(self, M: np.ndarray) -> None:
+        delta = np.array(M, float) @ rigid_inverse(self.figure.location)
+        self.figure.location = np.array(M, float)
+        for g in self.app.goals:
+            if g.figure == self.figure.name:
+                g.target = delta @ g.target
+                g.manip = delta @ g.manip
+        self.app.goals_changed()
+
+    def end_primitive(self) -> None:
+        """Nothing to re-seat: a placement has no goal orientation."""
+
+
+class JointRotation:
+    """CONTROL-drag target: one joint's rotational DOFs, clamped to their limits."""
+
+    def __init__(self, app: "App", figure: Figure, joint: str) -> None:
+        self.app, self.figure, self.joint = app, figure, figure.joint(joint)
+        self._dofs = [k for k, d in enumerate(self.joint.dofs) if d.kind == "R"]
+        self._slice = figure.joint_dof_slice(joint)
+
+    def dof_count(self) -> int:
+        return len(self._dofs)
+
+    def dof_axis(self, k: int) -> tuple[np.ndarray, np.ndarray]:
+        kin = self.figure.kinematics()
+        fk = kin.forward(self.figure.q, self.figure.location)
+        i = self._slice.start + self._dofs[k]
+        return fk.dof_axes[i] * kin.dof_sign[i], fk.dof_origins[i]
+
+    def dof_value(self, k: int) -> float:
+        return float(self.joint.displacement[self._dofs[k]])
+
+    def dof_limits(self, k: int) -> tuple[float, float]:
+        d = self.joint.dofs[self._dofs[k]]
+        return d.lower, d.upper
+
+    def set_dof_value(self, k: int, value: float) -> None:
+        lo, hi = self.dof_limits(k)
+        disp = self.joint.displacement.copy()
+        disp[self._dofs[k]] = float(np.clip(value, lo, hi))
+        self.joint.displacement = disp
+        self.app.posture_changed(self.figure)
+
+
+# ---------------------------------------------------------------------- IK
+def solve_goals(env: Environment, goals: list[GoalEntry], budget_s: float) -> tuple[int, bool]:
+    """Until :mod:`jackpy.ik` lands a drag moves the goal marker only."""
+    return 0, True
+
+
+# ---------------------------------------------------------------------- effectors
+def find_effectors(figure: Figure) -> dict[str, str]:
+    """``role -> "segment.site"`` of the end effectors this figure has (see :data:`EFFECTOR_SITES`)."""
+    out = {}
+    for role, candidates in EFFECTOR_SITES.items():
+        for c in candidates:
+            seg, site = c.split(".", 1)
+            if seg in figure.segments and site in figure.segments[seg].sites:
+                out[role] = c
+                break
+    return out
+
+
+def effector_segments(figure: Figure, effectors: dict[str, str]) -> dict[str, str]:
+    """``segment -> role``: each effector's own segment, and for hands, feet and head everything
+    beyond it away from the pelvis (fingers, toes, jaw and eyes grab their hand, foot, head)."""
+    adj: dict[str, list[str]] = {s: [] for s in figure.segments}
+    for j in figure.joints.values():
+        adj[j.from_seg].append(j.to_seg)
+        adj[j.to_seg].append(j.from_seg)
+    centre = effectors.get("pelvis", f"{figure.root_segment()}.x").split(".")[0]
+    out: dict[str, str] = {}
+    for role, site in effectors.items():
+        seg = site.split(".")[0]
+        out[seg] = role
+        if role == "pelvis":
+            continue
+        toward = _next_toward(adj, seg, centre)
+        stack, seen = [seg], {seg, toward}
+        while stack:
+            s = stack.pop()
+            for n in adj[s]:
+                if n not in seen:
+                    seen.add(n)
+                    out.setdefault(n, role)
+                    stack.append(n)
+    return out
+
+
+def _next_toward(adj: dict[str, list[str]], start: str, goal: str) -> str | None:
+    """The neighbour of ``start`` on the tree path to ``goal`` (None if ``start`` is ``goal``)."""
+    prev = {start: start}
+    queue = [start]
+    while queue:
+        s = queue.pop(0)
+        if s == goal:
+            break
+        for n in adj[s]:
+            if n not in prev:
+                prev[n] = s
+                queue.append(n)
+    if goal not in prev or goal == start:
+        return None
+    s = goal
+    while prev[s] != start:
+        s = prev[s]
+    return s
+
+
+# ---------------------------------------------------------------------- the application
+class App:
+    """The workbench state and its frame step; ``renderer`` is optional (headless logic tests)."""
+
+    def __init__(self, env: Environment, renderer: "Renderer | None" = None,
+                 size: tuple[int, int] = (1280, 800), settings: Settings | None = None) -> None:
+        self.settings = settings or Settings()
+        self.renderer = renderer
+        self.size = size
+        self.camera = OrbitCamera()
+        self.view = SceneView()
+        self.manipulator = Manipulator(self.settings.literal_grab)
+        self.undo_stack: UndoStack[Snapshot] = UndoStack()
+        self.log: list[str] = []
+        self.env = env
+        self.goals: list[GoalEntry] = []
+        self.selection: SegmentPick | GoalPick | None = None
+        self.manipulation_mode = False
+        """Explicit operator mode: drags anywhere move the selection (ESCAPE leaves it)."""
+        self.session_path: Path | None = None
+        self.dirty = False
+        self.needs_solve = False
+        self.stats = FrameStats()
+        self.on_log: Callable[[str], None] | None = None
+        self._cursor = (0.0, 0.0)
+        self._buttons: set[int] = set()
+        self._mods = 0
+        self._nav: NavAction | None = None
+        self._drag_snapshot: Snapshot | None = None
+        self._edit_snapshot: Snapshot | None = None
+        self._drag_changed = False
+        self.set_environment(env)
+
+    # ------------------------------------------------------------------ scene
+    def set_environment(self, env: Environment, goals: list[GoalEntry] | None = None) -> None:
+        """Show ``env``; plant the feet of every articulated figure unless ``goals`` are given."""
+        self.env = env
+        self.view = SceneView()
+        self.manipulator.attach(None)
+        self.selection = None
+        self.undo_stack.clear()
+        if goals is None:
+            goals = []
+            for fig in env.figures.values():
+                eff = find_effectors(fig)
+                for role in FOOT_ROLES:
+                    if role in eff:
+                        goals.append(self._new_goal(fig, eff[role], "position+orientation"))
+        self.goals = goals
+        self.needs_solve = False
+        self.frame_all()
+
+    def frame_all(self) -> None:
+        """Aim the camera at everything in the scene."""
+        lo, hi = np.full(3, np.inf), np.full(3, -np.inf)
+        for fig in self.env.figures.values():
+            for w in fig.world_transforms().values():
+                lo, hi = np.minimum(lo, w[:3, 3]), np.maximum(hi, w[:3, 3])
+        if np.all(np.isfinite(lo)):
+            self.camera.frame(lo - 0.15, hi + 0.15, self.size[0] / self.size[1])
+
+    def figure_of_interest(self) -> Figure | None:
+        """The first articulated figure (the human)."""
+        return next((f for f in self.env.figures.values() if not is_object(f)), None)
+
+    def _new_goal(self, fig: Figure, site: str, kind: str) -> GoalEntry:
+        w = fig.site_world(*site.split(".", 1))
+        manip = np.eye(4)
+        manip[:3, 3] = w[:3, 3]
+        return GoalEntry(f"{fig.name}:{site}", fig.name, site, kind, w.copy(), manip=manip,
+                         offset=w[:3, :3].copy())
+
+    def goal(self, key: str) -> GoalEntry | None:
+        return next((g for g in self.goals if g.key == key), None)
+
+    def ensure_goal(self, fig: Figure, site: str, kind: str = "position") -> GoalEntry:
+        """The goal on ``fig``'s ``site``, created at the site's current frame if missing."""
+        g = self.goal(f"{fig.name}:{site}")
+        if g is None:
+            g = self._new_goal(fig, site, kind)
+            self.goals.append(g)
+        return g
+
+    def add_goal(self, fig: Figure, site: str, kind: str) -> GoalEntry:
+        """A new goal at the site's current frame (replacing one on the same site)."""
+        old = self.goal(f"{fig.name}:{site}")
+        if old is not None:
+            self.goals.remove(old)
+        g = self._new_goal(fig, site, kind)
+        self.goals.append(g)
+        self.goals_changed()
+        return g
+
+    def remove_goal(self, key: str) -> None:
+        """Delete a goal (one undo step)."""
+        self.command(f"remove goal {key}", lambda: self.goals.remove(self.goal(key)))
+
+    # ------------------------------------------------------------------ notifications
+    def goals_changed(self) -> None:
+        self.needs_solve = True
+        self.dirty = True
+        self._drag_changed = True
+
+    def posture_changed(self, figure: Figure) -> None:
+        """A DOF was set directly: goals keep their targets but the figure is not re-solved."""
+        self.dirty = True
+        self._drag_changed = True
+
+    def info(self, text: str) -> None:
+        """Append to the log panel."""
+        self.log.append(text)
+        del self.log[:-500]
+        if self.on_log is not None:
+            self.on_log(text)
+
+    # ------------------------------------------------------------------ undo
+    def capture(self, structural: bool = False) -> Snapshot:
+        """The current undoable state (whole figures too when ``structural``)."""
+        postures = {n: (f.q.copy(), f.location.copy()) for n, f in self.env.figures.items()}
+        figures = {n: copy.deepcopy(f) for n, f in self.env.figures.items()} if structural else None
+        return Snapshot(postures, copy.deepcopy(self.goals), figures)
+
+    def restore(self, snap: Snapshot) -> None:
+        """Put back a captured state exactly (no solve follows)."""
+        if snap.figures is not None:
+            for name, fig in snap.figures.items():
+                self.env.figures[name] = copy.deepcopy(fig)
+        for name, (q, loc) in snap.postures.items():
+            fig = self.env.figures.get(name)
+            if fig is not None:
+                fig.q = q.copy()
+                fig.location = loc.copy()
+        self.goals = copy.deepcopy(snap.goals)
+        self.manipulator.attach(None)
+        self.needs_solve = False
+        self.dirty = True
+
+    def command(self, label: str, action: Callable[[], object], structural: bool = False) -> None:
+        """Run ``action`` as one undoable step."""
+        before = self.capture(structural)
+        action()
+        self.undo_stack.push(label, before)
+        self.dirty = True
+        self.info(label)
+
+    def begin_edit(self) -> None:
+        """A continuous edit (a slider drag) starts: remember the state for one undo step."""
+        self._edit_snapshot = self.capture()
+
+    def end_edit(self, label: str) -> None:
+        """The continuous edit ended: push it as one undo step."""
+        if self._edit_snapshot is not None:
+            self.undo_stack.push(label, self._edit_snapshot)
+            self._edit_snapshot = None
+            self.info(label)
+
+    def undo(self) -> None:
+        if self.manipulator.active:
+            return
+        snap = self.undo_stack.undo(self.capture(True))
+        if snap is not None:
+            self.restore(snap)
+            self.info("undo")
+
+    def redo(self) -> None:
+        if self.manipulator.active:
+            return
+        snap = self.undo_stack.redo(self.capture(True))
+        if snap is not None:
+            self.restore(snap)
+            self.info("redo")
+
+    # ------------------------------------------------------------------ picking
+    def pick(self, x: float, y: float) -> SegmentPick | GoalPick | None:
+        """What is drawn at framebuffer pixel (x, y) in the last frame."""
+        if self.renderer is None:
+            return None
+        return self.view.pick_target(self.renderer.pick(int(x), int(y)))
+
+    def ray(self, x: float, y: float) -> tuple[np.ndarray, np.ndarray]:
+        """World mouse ray through framebuffer pixel (x, y)."""
+        return self.camera.ray_from_pixel(x, y, *self.size)
+
+    def select(self, target: SegmentPick | GoalPick | None) -> None:
+        """Select a thing and attach the operator to it (for the next drag)."""
+        self.selection = target
+        self.manipulator.attach(None)
+
+    def _attach_for_drag(self, target: SegmentPick | GoalPick, control: bool) -> bool:
+        """Attach the operator to what a press hit; False when it is not manipulable."""
+        if isinstance(target, GoalPick):
+            g = self.goal(target.key)
+            if g is None:
+                return False
+            self.manipulator.attach(GoalTarget(self, g))
+            return True
+        fig = self.env.figures.get(target.figure)
+        if fig is None:
+            return False
+        if is_object(fig):
+            self.manipulator.attach(FigureTarget(self, fig))
+            return True
+        roles = effector_segments(fig, find_effectors(fig))
+        role = roles.get(target.segment)
+        if role is not None:
+            g = self.ensure_goal(fig, find_effectors(fig)[role], "position")
+            self.manipulator.attach(GoalTarget(self, g))
+            return True
+        if control:
+            kin = fig.kinematics()
+            s = kin.segment_index[target.segment]
+            if kin.parent_joint[s] < 0:
+                return False
+            self.manipulator.attach(joint=JointRotation(self, fig, kin.joint_names[kin.parent_joint[s]]))
+            return True
+        self.manipulator.attach(FigureTarget(self, fig))
+        return True
+
+    @property
+    def dragging(self) -> bool:
+        """Whether a mouse button is held on the viewport (operator or camera)."""
+        return bool(self._buttons)
+
+    # ------------------------------------------------------------------ input handlers (glfw's)
+    def resize(self, width: int, height: int) -> None:
+        """Framebuffer resized (pixels)."""
+        if width > 0 and height > 0:
+            self.size = (width, height)
+            if self.renderer is not None:
+                self.renderer.resize(width, height)
+
+    def on_cursor_pos(self, x: float, y: float) -> None:
+        """Cursor moved to framebuffer pixel (x, y)."""
+        dx, dy = x - self._cursor[0], y - self._cursor[1]
+        self._cursor = (x, y)
+        if self.manipulator.active:
+            self.manipulator.move(self.ray(x, y))
+        elif self._nav is NavAction.ORBIT:
+            self.camera.orbit_pixels(dx, dy)
+        elif self._nav is NavAction.PAN:
+            self.camera.pan(dx, dy, self.size[1])
+        elif self._nav is NavAction.ZOOM:
+            self.camera.zoom(-dy / 40.0)
+
+    def on_mouse_button(self, button: int, action: int, mods: int) -> None:
+        """A mouse button went down (``action`` = 1) or up (0) with glfw modifier bits ``mods``."""
+        if button not in _BUTTON_NAMES:
+            return
+        self._mods = mods
+        was_idle = not self._buttons
+        if action == PRESS:
+            self._buttons.add(button)
+        elif action == RELEASE:
+            self._buttons.discard(button)
+        else:
+            return
+        if was_idle and action == PRESS:
+            self._begin_press(button)
+        elif self.manipulator.target is not None or self.manipulator.joint is not None:
+            self._update_operator()
+        if not self._buttons:
+            self._end_press()
+
+    def _begin_press(self, button: int) -> None:
+        x, y = self._cursor
+        control = bool(self._mods & MOD_CONTROL)
+        hit = self.pick(x, y)
+        target = hit if hit is not None else (self.selection if self.manipulation_mode else None)
+        if target is not None and self._attach_for_drag(target, control):
+            self.selection = target
+            self._drag_snapshot = self.capture()
+            self._drag_changed = False
+            self._update_operator()
+            return
+        mods = {"shift"} if self._mods & MOD_SHIFT else set()
+        if self._mods & MOD_CONTROL:
+            mods.add("ctrl")
+        self._nav = navigation_action(self.settings.mouse_mapping, _BUTTON_NAMES[button], mods)
+
+    def _update_operator(self) -> None:
+        names = frozenset(_BUTTON_NAMES[b] for b in self._buttons)
+        self.manipulator.literal = self.settings.literal_grab
+        self.manipulator.set_buttons(names, bool(self._mods & MOD_SHIFT), bool(self._mods & MOD_CONTROL),
+                                     self.ray(*self._cursor))
+
+    def _end_press(self) -> None:
+        self._nav = None
+        if self._drag_snapshot is not None:
+            self.manipulator.finish()
+            if self._drag_changed:
+                self.undo_stack.push("drag", self._drag_snapshot)
+            self._drag_snapshot = None
+
+    def on_scroll(self, dx: float, dy: float) -> None:
+        """Mouse wheel: zoom."""
+        self.camera.zoom(dy)
+
+    def on_key(self, key: int, scancode: int, action: int, mods: int) -> None:
+        """Keyboard: modifiers re-select the operator's primitive mid-drag; shortcuts otherwise."""
+        if key in (KEY_LEFT_SHIFT, KEY_RIGHT_SHIFT, KEY_LEFT_CONTROL, KEY_RIGHT_CONTROL):
+            bit = MOD_SHIFT if key in (KEY_LEFT_SHIFT, KEY_RIGHT_SHIFT) else MOD_CONTROL
+            self._mods = (self._mods | bit) if action != RELEASE else (self._mods & ~bit)
+            if self._drag_snapshot is not None:
+                self._update_operator()
+            return
+        if action != PRESS:
+            return
+        ctrl = bool(mods & MOD_CONTROL)
+        if key == KEY_ESCAPE:
+            self._end_press()
+            self._buttons.clear()
+            self.manipulation_mode = False
+            self.select(None)
+        elif ctrl and key == ord("Z"):
+            self.redo() if mods & MOD_SHIFT else self.undo()
+        elif ctrl and key == ord("Y"):
+            self.redo()
+        elif key == KEY_DELETE and isinstance(self.selection, GoalPick):
+            self.remove_goal(self.selection.key)
+            self.selection = None
+        elif not ctrl and key == ord("M"):
+            self.manipulation_mode = not self.manipulation_mode
+        elif not ctrl and key == ord("K"):
+            self.settings.skeleton = not self.settings.skeleton
+        elif not ctrl and key == ord("F"):
+            self.frame_all()
+        elif not ctrl and key in (ord("1"), ord("3"), ord("7"), ord("9")):
+            self.camera.set_preset({ord("1"): "front", ord("3"): "side", ord("7"): "top",
+                                    ord("9"): "iso"}[key])
+
+    # ------------------------------------------------------------------ frame
+    def solve(self) -> tuple[int, bool]:
+        """Solve IK for every figure with enabled goals, within the time box.
+
+        Returns (iterations, settled): settled when every goal is met or the solver stalls.
+        """
+        return solve_goals(self.env, self.goals, self.settings.ik_time_budget_s)
+
+    def step(self) -> FrameStats:
+        """One frame after the input handlers ran: solve if goals changed, then draw."""
+        stats = FrameStats()
+        if self.needs_solve:
+            t0 = time.perf_counter()
+            stats.iterations, settled = self.solve()
+            stats.solve_s = time.perf_counter() - t0
+            self.needs_solve = self.manipulator.active or not settled
+        if self.renderer is not None:
+            t0 = time.perf_counter()
+            self.draw()
+            stats.draw_s = time.perf_counter() - t0
+        self.stats = stats
+        return stats
+
+    def draw(self) -> None:
+        """Render the scene into the renderer's framebuffer."""
+        assert self.renderer is not None
+        triads, lines = self.manipulator.overlay()
+        self.view.upload(self.renderer, self.env)
+        scene = self.view.build(self.env, self.goals, self.settings.skeleton, self.selection,
+                                Overlay(triads, lines), self.settings.show_floor)
+        self.renderer.render(scene, self.camera.view_matrix(), self.camera.projection_matrix(self.renderer.aspect))

@@ -1,0 +1,76 @@
+"""Goals list: every goal with enable, weight, priority and chain; add one on a site, remove one."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from imgui_bundle import imgui
+
+from jackpy.ui.scene_view import GoalPick, SegmentPick, is_object
+
+if TYPE_CHECKING:
+    from jackpy.ui.app import App
+    from jackpy.ui.panels import UiState
+
+KINDS = ["position", "orientation", "position+orientation"]
+
+
+def draw(app: "App", ui: "UiState") -> None:
+    vp = imgui.get_main_viewport()
+    imgui.set_next_window_pos((vp.size.x - 290, 400), imgui.Cond_.first_use_ever)
+    imgui.set_next_window_size((280, 300), imgui.Cond_.first_use_ever)
+    visible, ui.open_panels["Goals"] = imgui.begin("Goals", ui.open_panels["Goals"])
+    if visible:
+        _add_row(app)
+        imgui.separator()
+        for g in list(app.goals):
+            imgui.push_id(g.key)
+            chosen = isinstance(app.selection, GoalPick) and app.selection.key == g.key
+            if imgui.selectable(f"{g.site} ({g.kind})", chosen)[0]:
+                app.select(GoalPick(g.key))
+            changed, enabled = imgui.checkbox("enabled", g.enabled)
+            if changed:
+                app.command(f"{'enable' if enabled else 'disable'} {g.key}", lambda g=g, e=enabled: _set(g, "enabled", e))
+            imgui.same_line()
+            if imgui.small_button("remove"):
+                app.remove_goal(g.key)
+            imgui.set_next_item_width(90)
+            changed, w = imgui.drag_float("weight", g.weight, 0.01, 0.0, 100.0, "%.2f")
+            if imgui.is_item_activated():
+                app.begin_edit()
+            if changed:
+                g.weight = max(0.0, w)
+                app.goals_changed()
+            if imgui.is_item_deactivated_after_edit():
+                app.end_edit(f"weight of {g.key}")
+            imgui.same_line()
+            imgui.set_next_item_width(70)
+            changed, p = imgui.input_int("priority", g.priority)
+            if changed:
+                app.command(f"priority of {g.key}", lambda g=g, p=p: _set(g, "priority", p))
+            changed, chain = imgui.input_text("chain (joint)", g.chain or "",
+                                              imgui.InputTextFlags_.enter_returns_true)
+            if changed:
+                app.command(f"chain of {g.key}", lambda g=g, c=chain.strip() or None: _set(g, "chain", c))
+            imgui.separator()
+            imgui.pop_id()
+    imgui.end()
+
+
+def _set(goal: object, name: str, value: object) -> None:
+    setattr(goal, name, value)
+
+
+def _add_row(app: "App") -> None:
+    sel = app.selection
+    fig = app.env.figures.get(sel.figure) if isinstance(sel, SegmentPick) else None
+    if fig is None or is_object(fig):
+        imgui.text_disabled("Select a segment to add a goal on its site.")
+        return
+    seg = fig.segments[sel.segment]
+    for site in seg.sites:
+        for kind in ("position", "position+orientation"):
+            label = f"+ {kind} on {seg.name}.{site}"
+            if imgui.small_button(label):
+                app.command(f"add goal {fig.name}:{seg.name}.{site}",
+                            lambda s=f"{seg.name}.{site}", k=kind: app.add_goal(fig, s, k))

@@ -1,0 +1,62 @@
+"""Joint inspector: a slider per DOF of the selected figure, in degrees (cm for translations),
+bounded by the DOF's limits. One slider drag is one undo step."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+from imgui_bundle import imgui
+
+from jackpy.ui.scene_view import SegmentPick, is_object
+
+if TYPE_CHECKING:
+    from jackpy.ui.app import App
+    from jackpy.ui.panels import UiState
+
+
+_state: dict[str, str | None] = {"focus": None}
+"""The joint opened for the last selection (a new selection opens its joint once)."""
+
+
+def draw(app: "App", ui: "UiState") -> None:
+    vp = imgui.get_main_viewport()
+    imgui.set_next_window_pos((vp.size.x - 290, 30), imgui.Cond_.first_use_ever)
+    imgui.set_next_window_size((280, 360), imgui.Cond_.first_use_ever)
+    visible, ui.open_panels["Joints"] = imgui.begin("Joints", ui.open_panels["Joints"])
+    if visible:
+        sel = app.selection
+        fig = app.env.figures.get(sel.figure) if isinstance(sel, SegmentPick) else app.figure_of_interest()
+        if fig is None or is_object(fig):
+            imgui.text_disabled("Select a segment of a figure.")
+        else:
+            focus = None
+            if isinstance(sel, SegmentPick) and sel.figure == fig.name:
+                kin = fig.kinematics()
+                pj = kin.parent_joint[kin.segment_index[sel.segment]]
+                focus = kin.joint_names[pj] if pj >= 0 else None
+            refocus = focus is not None and focus != _state["focus"]
+            _state["focus"] = focus
+            for joint in fig.joints.values():
+                if refocus:
+                    imgui.set_next_item_open(joint.name == focus, imgui.Cond_.always)
+                if not imgui.tree_node(f"{joint.name}##joint"):
+                    continue
+                for k, dof in enumerate(joint.dofs):
+                    rot = dof.kind == "R"
+                    f = 180.0 / np.pi if rot else 100.0
+                    unit = "deg" if rot else "cm"
+                    changed, v = imgui.slider_float(f"{dof.kind}{k} {unit}##{joint.name}{k}",
+                                                    float(joint.displacement[k] * f),
+                                                    float(dof.lower * f), float(dof.upper * f), "%.1f")
+                    if imgui.is_item_activated():
+                        app.begin_edit()
+                    if changed:
+                        disp = joint.displacement.copy()
+                        disp[k] = float(np.clip(v / f, dof.lower, dof.upper))
+                        joint.displacement = disp
+                        app.posture_changed(fig)
+                    if imgui.is_item_deactivated_after_edit():
+                        app.end_edit(f"set {joint.name}[{k}]")
+                imgui.tree_pop()
+    imgui.end()

@@ -1,0 +1,135 @@
+"""The main menu bar (File, Edit, View) and the path prompt its items open."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from imgui_bundle import imgui
+
+from jackpy.errors import JackpyError
+
+if TYPE_CHECKING:
+    from jackpy.ui.app import App
+    from jackpy.ui.panels import UiState
+
+PROMPTS = {"open": "Open scene (.env)", "save_as": "Save scene as (.env)",
+           "import": "Import CAD (stl, obj, ply, glb ...)", "screenshot": "Save screenshot (.png)"}
+
+
+def draw(app: "App", ui: "UiState") -> None:
+    from jackpy.ui import session
+
+    if imgui.begin_main_menu_bar():
+        if imgui.begin_menu("File"):
+            if imgui.menu_item_simple("New"):
+                app.command("new scene", lambda: session.new_scene(app), structural=True)
+            if imgui.menu_item_simple("Open...", "Ctrl+O"):
+                _prompt(ui, "open", "")
+            if imgui.menu_item_simple("Save", "Ctrl+S"):
+                if app.session_path is None:
+                    _prompt(ui, "save_as", "scene.env")
+                else:
+                    _run(app, lambda: session.save_session(app, app.session_path))
+            if imgui.menu_item_simple("Save as..."):
+                _prompt(ui, "save_as", str(app.session_path or "scene.env"))
+            imgui.separator()
+            if imgui.menu_item_simple("Import CAD..."):
+                _prompt(ui, "import", "")
+            if imgui.menu_item_simple("Screenshot..."):
+                _prompt(ui, "screenshot", "screenshot.png")
+            imgui.separator()
+            if imgui.menu_item_simple("Quit", "Ctrl+Q"):
+                ui.quit_requested = True
+            imgui.end_menu()
+        if imgui.begin_menu("Edit"):
+            if imgui.menu_item_simple(f"Undo {app.undo_stack.undo_label or ''}", "Ctrl+Z",
+                                      enabled=app.undo_stack.undo_label is not None):
+                app.undo()
+            if imgui.menu_item_simple(f"Redo {app.undo_stack.redo_label or ''}", "Ctrl+Y",
+                                      enabled=app.undo_stack.redo_label is not None):
+                app.redo()
+            imgui.end_menu()
+        if imgui.begin_menu("View"):
+            for name, key in (("front", "1"), ("side", "3"), ("top", "7"), ("iso", "9")):
+                if imgui.menu_item_simple(name.capitalize(), key):
+                    app.camera.set_preset(name)
+            if imgui.menu_item_simple("Frame all", "F"):
+                app.frame_all()
+            s = app.settings
+            s.skeleton = imgui.menu_item("Skeleton", "K", s.skeleton)[1]
+            s.show_floor = imgui.menu_item("Floor", "", s.show_floor)[1]
+            app.camera.orthographic = imgui.menu_item("Orthographic", "", app.camera.orthographic)[1]
+            s.literal_grab = imgui.menu_item("Literal Jack grab (jump)", "", s.literal_grab)[1]
+            s.gizmo_local = imgui.menu_item("Gizmo in local frame", "", s.gizmo_local)[1]
+            app.manipulation_mode = imgui.menu_item("Manipulation mode", "M", app.manipulation_mode)[1]
+            imgui.separator()
+            for name in ui.open_panels:
+                ui.open_panels[name] = imgui.menu_item(name, "", ui.open_panels[name])[1]
+            imgui.end_menu()
+        imgui.end_main_menu_bar()
+    _draw_prompt(app, ui)
+    _draw_recovery(app, ui)
+
+
+def _prompt(ui: "UiState", kind: str, text: str) -> None:
+    ui.prompt, ui.prompt_text = kind, text
+
+
+def _run(app: "App", action) -> None:
+    try:
+        action()
+    except (JackpyError, OSError, ValueError) as exc:
+        app.info(f"error: {exc}")
+
+
+def _draw_prompt(app: "App", ui: "UiState") -> None:
+    from jackpy.ui import screenshot, session
+
+    if ui.prompt is None:
+        return
+    imgui.open_popup("path")
+    vp = imgui.get_main_viewport()
+    imgui.set_next_window_pos((vp.size.x / 2, vp.size.y / 3), imgui.Cond_.appearing, (0.5, 0.5))
+    if imgui.begin_popup_modal("path", None, imgui.WindowFlags_.always_auto_resize)[0]:
+        imgui.text(PROMPTS[ui.prompt])
+        imgui.set_next_item_width(420)
+        done, ui.prompt_text = imgui.input_text("##path", ui.prompt_text, imgui.InputTextFlags_.enter_returns_true)
+        done = imgui.button("OK") or done
+        imgui.same_line()
+        cancel = imgui.button("Cancel")
+        if done and ui.prompt_text.strip():
+            path, kind = Path(ui.prompt_text.strip()).expanduser(), ui.prompt
+            actions = {
+                "open": lambda: session.open_session(app, path),
+                "save_as": lambda: session.save_session(app, path),
+                "import": lambda: app.command(f"import {path.name}", lambda: session.import_cad(app, path),
+                                              structural=True),
+                "screenshot": lambda: screenshot.save_view(app, path),
+            }
+            _run(app, actions[kind])
+        if done or cancel:
+            ui.prompt = None
+            imgui.close_current_popup()
+        imgui.end_popup()
+
+
+def _draw_recovery(app: "App", ui: "UiState") -> None:
+    from jackpy.ui import session
+
+    if ui.recovery_offer is None:
+        return
+    imgui.open_popup("Recover")
+    if imgui.begin_popup_modal("Recover", None, imgui.WindowFlags_.always_auto_resize)[0]:
+        imgui.text("jackpy did not close cleanly last time.")
+        imgui.text(f"Recover the autosaved scene from {ui.recovery_offer}?")
+        if imgui.button("Recover"):
+            _run(app, lambda: session.recover(app, Path(ui.recovery_offer)))
+            ui.recovery_offer = None
+            imgui.close_current_popup()
+        imgui.same_line()
+        if imgui.button("Discard"):
+            session.discard_recovery(Path(ui.recovery_offer))
+            ui.recovery_offer = None
+            imgui.close_current_popup()
+        imgui.end_popup()

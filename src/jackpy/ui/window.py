@@ -1,0 +1,180 @@
+"""The workbench window: glfw + moderngl + Dear ImGui (imgui-bundle's C++ glfw/opengl3 backends).
+
+The window owns the GL context and forwards every glfw callback first to ImGui, then, unless ImGui
+or the gizmo wants the mouse or keyboard, to the :class:`~jackpy.ui.app.App` handlers. Cursor
+positions arrive in window coordinates and are scaled to framebuffer pixels. One
+:meth:`Window.frame` = poll events, ImGui frame with panels and gizmo, ``app.step()`` (IK, then the
+3-D view into the renderer's framebuffer), blit it to the screen, ImGui on top, swap.
+"""
+
+from __future__ import annotations
+
+import ctypes
+import time
+from collections.abc import Callable
+
+import imgui_bundle  # noqa: F401  (first: points the glfw package at imgui-bundle's libglfw)
+import glfw
+import moderngl
+from imgui_bundle import imgui
+
+from jackpy.errors import JackpyError
+from jackpy.ui.app import App, KEY_ESCAPE, MOD_CONTROL, PRESS
+from jackpy.ui.gizmo import Gizmo
+from jackpy.ui.panels import UiState, draw_all
+from jackpy.ui.render import Renderer
+
+KEY_O, KEY_Q, KEY_S, KEY_T, KEY_R = ord("O"), ord("Q"), ord("S"), ord("T"), ord("R")
+
+
+class WindowError(JackpyError):
+    """No window could be opened (no display, no OpenGL 3.3)."""
+
+
+class Window:
+    """A glfw window showing an :class:`App`; ``visible=False`` for tests that only need the loop."""
+
+    def __init__(self, app: App, title: str = "jackpy", size: tuple[int, int] = (1280, 800),
+                 visible: bool = True) -> None:
+        if not glfw.init():
+            raise WindowError("cannot initialise glfw (is there a display? set DISPLAY or use xvfb-run)")
+        glfw.window_hint(glfw.CONTEXT_VERSION_MAJOR, 3)
+        glfw.window_hint(glfw.CONTEXT_VERSION_MINOR, 3)
+        glfw.window_hint(glfw.OPENGL_PROFILE, glfw.OPENGL_CORE_PROFILE)
+        glfw.window_hint(glfw.OPENGL_FORWARD_COMPAT, True)
+        glfw.window_hint(glfw.VISIBLE, visible)
+        self.handle = glfw.create_window(size[0], size[1], title, None, None)
+        if not self.handle:
+            glfw.terminate()
+            raise WindowError("cannot create an OpenGL 3.3 core window")
+        glfw.make_context_current(self.handle)
+        glfw.swap_interval(1 if visible else 0)
+        self.ctx = moderngl.create_context()
+        self._addr = ctypes.cast(self.handle, ctypes.c_void_p).value
+        self.imgui_ctx = imgui.create_context()
+        imgui.get_io().config_flags |= imgui.ConfigFlags_.nav_enable_keyboard
+        imgui.get_io().set_ini_filename("")
+        imgui.backends.glfw_init_for_opengl(self._addr, False)
+        imgui.backends.opengl3_init("#version 330")
+        self.app = app
+        fb = glfw.get_framebuffer_size(self.handle)
+        app.renderer = Renderer(self.ctx, fb)
+        app.resize(*fb)
+        self.ui = UiState()
+        self.gizmo = Gizmo()
+        self._closed = False
+        # keep references: glfw holds only C pointers to these
+        self._callbacks = (self.cursor_pos_callback, self.mouse_button_callback, self.scroll_callback,
+                           self.key_callback, self.char_callback, self.framebuffer_size_callback)
+        glfw.set_cursor_pos_callback(self.handle, self.cursor_pos_callback)
+        glfw.set_mouse_button_callback(self.handle, self.mouse_button_callback)
+        glfw.set_scroll_callback(self.handle, self.scroll_callback)
+        glfw.set_key_callback(self.handle, self.key_callback)
+        glfw.set_char_callback(self.handle, self.char_callback)
+        glfw.set_framebuffer_size_callback(self.handle, self.framebuffer_size_callback)
+
+    # ------------------------------------------------------------------ glfw callbacks
+    def _scale(self) -> tuple[float, float]:
+        w, h = glfw.get_window_size(self.handle)
+        fw, fh = glfw.get_framebuffer_size(self.handle)
+        return fw / max(w, 1), fh / max(h, 1)
+
+    def _viewport_has_mouse(self) -> bool:
+        """The 3-D view gets the mouse unless ImGui or the gizmo wants it (a drag keeps it)."""
+        if self.app.manipulator.active or self.app.dragging:
+            return True
+        return not imgui.get_io().want_capture_mouse and not self.gizmo.wants_mouse()
+
+    def cursor_pos_callback(self, window: object, x: float, y: float) -> None:
+        imgui.backends.glfw_cursor_pos_callback(self._addr, x, y)
+        sx, sy = self._scale()
+        self.app.on_cursor_pos(x * sx, y * sy)
+
+    def mouse_button_callback(self, window: object, button: int, action: int, mods: int) -> None:
+        imgui.backends.glfw_mouse_button_callback(self._addr, button, action, mods)
+        if action != PRESS or self._viewport_has_mouse():
+            self.app.on_mouse_button(button, action, mods)
+
+    def scroll_callback(self, window: object, dx: float, dy: float) -> None:
+        imgui.backends.glfw_scroll_callback(self._addr, dx, dy)
+        if not imgui.get_io().want_capture_mouse:
+            self.app.on_scroll(dx, dy)
+
+    def key_callback(self, window: object, key: int, scancode: int, action: int, mods: int) -> None:
+        imgui.backends.glfw_key_callback(self._addr, key, scancode, action, mods)
+        if imgui.get_io().want_capture_keyboard and key != KEY_ESCAPE:
+            return
+        if action == PRESS and mods & MOD_CONTROL and key in (KEY_O, KEY_S, KEY_Q):
+            self._shortcut(key)
+            return
+        if action == PRESS and not mods and key in (KEY_T, KEY_R):
+            self.gizmo.rotate = key == KEY_R
+            return
+        self.app.on_key(key, scancode, action, mods)
+
+    def char_callback(self, window: object, codepoint: int) -> None:
+        imgui.backends.glfw_char_callback(self._addr, codepoint)
+
+    def framebuffer_size_callback(self, window: object, width: int, height: int) -> None:
+        self.app.resize(width, height)
+
+    def _shortcut(self, key: int) -> None:
+        from jackpy.ui import session
+
+        if key == KEY_Q:
+            self.ui.quit_requested = True
+        elif key == KEY_O:
+            self.ui.prompt, self.ui.prompt_text = "open", ""
+        elif self.app.session_path is not None:
+            session.save_session(self.app, self.app.session_path)
+        else:
+            self.ui.prompt, self.ui.prompt_text = "save_as", "scene.env"
+
+    # ------------------------------------------------------------------ loop
+    def frame(self) -> None:
+        """Poll input and draw one frame."""
+        glfw.poll_events()
+        imgui.backends.opengl3_new_frame()
+        imgui.backends.glfw_new_frame()
+        imgui.new_frame()
+        draw_all(self.app, self.ui)
+        fw, fh = glfw.get_framebuffer_size(self.handle)
+        w, h = glfw.get_window_size(self.handle)
+        self.gizmo.draw(self.app, w, h)
+        imgui.render()
+        if fw > 0 and fh > 0:
+            self.app.step()
+            self.ctx.screen.use()
+            self.ctx.viewport = (0, 0, fw, fh)
+            self.app.renderer.blit(self.ctx.screen)
+        imgui.backends.opengl3_render_draw_data(imgui.get_draw_data())
+        glfw.swap_buffers(self.handle)
+
+    @property
+    def should_close(self) -> bool:
+        return bool(glfw.window_should_close(self.handle)) or self.ui.quit_requested
+
+    def run(self, autosave: Callable[[], None] | None = None) -> None:
+        """Run frames until the window is closed; ``autosave`` is called every ``settings.autosave_s``."""
+        last = time.monotonic()
+        while not self.should_close:
+            self.frame()
+            if autosave is not None and time.monotonic() - last >= self.app.settings.autosave_s:
+                autosave()
+                last = time.monotonic()
+
+    def close(self) -> None:
+        """Free the GL and ImGui resources and the window."""
+        if self._closed:
+            return
+        self._closed = True
+        glfw.make_context_current(self.handle)
+        if self.app.renderer is not None:
+            self.app.renderer.release()
+            self.app.renderer = None
+        imgui.backends.opengl3_shutdown()
+        imgui.backends.glfw_shutdown()
+        imgui.destroy_context(self.imgui_ctx)
+        self.ctx.release()
+        glfw.destroy_window(self.handle)
+        glfw.terminate()
