@@ -119,13 +119,14 @@ def test_faults_resync_within_one_record_and_count_drops():
 def test_device_error_is_read_and_reported():
     with FlockSimulator(2, autoconfig_delay=0.05) as sim:
         with FlockDriver(sim.paths[0], 2, **FAST) as drv:
+            first = drv.store.wait(1, timeout=3.0)
+            assert first is not None
             sim.set_error(13, 3)
             errors = drv.check_errors()
             assert [c for c, _ in errors] == [13]
             assert "no FBB command response" in errors[0][1] and "address 3" in errors[0][1]
             assert drv.check_errors() == []  # reading cleared it
-            seq = drv.latest(1).seq
-            assert drv.store.wait(1, after_seq=seq, timeout=3.0) is not None  # streaming again
+            assert drv.store.wait(1, after_seq=first.seq + 1, timeout=3.0) is not None  # streaming again
 
 
 def test_kill_and_reconnect(tmp_path):
