@@ -23,6 +23,10 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from jackpy.ik.goals import Goal, Orientation, Position, PositionOrientation
+from jackpy.ik.problem import Problem
+from jackpy.ik.result import ITERATION_LIMIT
+from jackpy.ik.solver import solve as ik_solve
 from jackpy.peabody import Environment, Figure
 from jackpy.peabody.transforms import rigid_inverse
 from jackpy.ui.camera import OrbitCamera, navigation_action, NavAction
@@ -201,9 +205,45 @@ class JointRotation:
 
 
 # ---------------------------------------------------------------------- IK
+ITERATIONS_PER_CALL = 15
+"""Solver iterations between time-box checks."""
+
+
+def ik_goal(entry: GoalEntry) -> Goal:
+    """The :mod:`jackpy.ik` goal of a workbench goal."""
+    chain = entry.chain or None
+    if entry.kind == "position":
+        return Position(entry.site, entry.target[:3, 3], chain, entry.weight, entry.key)
+    if entry.kind == "orientation":
+        return Orientation(entry.site, entry.target[:3, :3], chain, entry.weight, name=entry.key)
+    return PositionOrientation(entry.site, entry.target, chain, entry.weight, name=entry.key)
+
+
 def solve_goals(env: Environment, goals: list[GoalEntry], budget_s: float) -> tuple[int, bool]:
-    """Until :mod:`jackpy.ik` lands a drag moves the goal marker only."""
-    return 0, True
+    """Solve each figure's enabled goals (priority = level, 0 first) from its current posture.
+
+    Runs :func:`jackpy.ik.solver.solve` in slices of :data:`ITERATIONS_PER_CALL` iterations until the
+    goals are achieved, the solver stops improving, or ``budget_s`` seconds have passed. Returns
+    (iterations, settled); not settled means the time box cut the solve short.
+    """
+    start = time.perf_counter()
+    iterations, settled = 0, True
+    for fig in env.figures.values():
+        mine = [g for g in goals if g.figure == fig.name and g.enabled]
+        if not mine or is_object(fig):
+            continue
+        problem = Problem(fig)
+        for g in mine:
+            problem.add(ik_goal(g), level=max(0, g.priority))
+        while True:
+            result = ik_solve(problem, max_iterations=ITERATIONS_PER_CALL)
+            iterations += result.iterations
+            if result.status != ITERATION_LIMIT:
+                break
+            if time.perf_counter() - start >= budget_s:
+                settled = False
+                break
+    return iterations, settled
 
 
 # ---------------------------------------------------------------------- effectors
@@ -285,6 +325,8 @@ class App:
         self.manipulation_mode = False
         """Explicit operator mode: drags anywhere move the selection (ESCAPE leaves it)."""
         self.session_path: Path | None = None
+        self.scene_dir: Path | None = None
+        """Directory the scene's included Peabody files are relative to."""
         self.dirty = False
         self.needs_solve = False
         self.stats = FrameStats()
@@ -424,7 +466,8 @@ class App:
     def undo(self) -> None:
         if self.manipulator.active:
             return
-        snap = self.undo_stack.undo(self.capture(True))
+        top = self.undo_stack.peek_undo()
+        snap = self.undo_stack.undo(self.capture(top is not None and top.figures is not None))
         if snap is not None:
             self.restore(snap)
             self.info("undo")
@@ -432,7 +475,8 @@ class App:
     def redo(self) -> None:
         if self.manipulator.active:
             return
-        snap = self.undo_stack.redo(self.capture(True))
+        top = self.undo_stack.peek_redo()
+        snap = self.undo_stack.redo(self.capture(top is not None and top.figures is not None))
         if snap is not None:
             self.restore(snap)
             self.info("redo")
@@ -447,6 +491,12 @@ class App:
     def ray(self, x: float, y: float) -> tuple[np.ndarray, np.ndarray]:
         """World mouse ray through framebuffer pixel (x, y)."""
         return self.camera.ray_from_pixel(x, y, *self.size)
+
+    def world_to_pixel(self, p: np.ndarray) -> np.ndarray:
+        """Framebuffer pixel (x, y) of world point ``p`` (m)."""
+        clip = self.camera.projection_matrix(self.size[0] / self.size[1]) @ self.camera.view_matrix() @ np.append(p, 1.0)
+        ndc = clip[:3] / clip[3]
+        return np.array([(ndc[0] + 1.0) * 0.5 * self.size[0], (1.0 - ndc[1]) * 0.5 * self.size[1]])
 
     def select(self, target: SegmentPick | GoalPick | None) -> None:
         """Select a thing and attach the operator to it (for the next drag)."""
@@ -533,9 +583,10 @@ class App:
         control = bool(self._mods & MOD_CONTROL)
         hit = self.pick(x, y)
         target = hit if hit is not None else (self.selection if self.manipulation_mode else None)
+        before = self.capture()
         if target is not None and self._attach_for_drag(target, control):
             self.selection = target
-            self._drag_snapshot = self.capture()
+            self._drag_snapshot = before
             self._drag_changed = False
             self._update_operator()
             return

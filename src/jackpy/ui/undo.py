@@ -56,6 +56,14 @@ class UndoStack(Generic[S]):
         self._undo.clear()
         self._redo.clear()
 
+    def peek_undo(self) -> S | None:
+        """The snapshot :meth:`undo` would return, left in place."""
+        return self._undo[-1].state if self._undo else None
+
+    def peek_redo(self) -> S | None:
+        """The snapshot :meth:`redo` would return, left in place."""
+        return self._redo[-1].state if self._redo else None
+
     @property
     def undo_label(self) -> str | None:
         """Label of the step :meth:`undo` would revert."""

@@ -103,7 +103,7 @@ def _draw_prompt(app: "App", ui: "UiState") -> None:
             actions = {
                 "open": lambda: session.open_session(app, path),
                 "save_as": lambda: session.save_session(app, path),
-                "import": lambda: app.command(f"import {path.name}", lambda: session.import_cad(app, path),
+                "import": lambda: app.command(f"import {path.name}", lambda: session.import_cad_file(app, path),
                                               structural=True),
                 "screenshot": lambda: screenshot.save_view(app, path),
             }

@@ -1,0 +1,247 @@
+"""Scenes on disk: the default scene, save/open, CAD import, autosave and crash recovery.
+
+A session is two files written atomically side by side:
+
+- ``NAME.env``: the Peabody environment (figures, placements, joint displacements) through
+  :func:`jackpy.peabody.writer.write_environment`, readable by any Peabody tool;
+- ``NAME.jackpy.json``: the sidecar with what Peabody cannot say: goals, settings, camera, each
+  figure's displacements and placement as exact binary64 numbers (the ``.env`` holds them rounded
+  to its text precision, so the sidecar wins when both are present), and how to rebuild imported
+  CAD objects (source file, units, up axis).
+
+Autosave writes the same pair to ``$JACKPY_HOME/recovery/recovery.env`` (default ``~/.jackpy``)
+every ``Settings.autosave_s`` seconds; a clean exit deletes it, so finding it at start-up means
+the last run crashed, and the workbench offers to recover it.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from dataclasses import asdict, fields
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+import jackpy
+from jackpy.atomic import atomic_write_text
+from jackpy.errors import JackpyError
+from jackpy.peabody import Environment
+from jackpy.peabody.reader import read_environment, read_figures
+from jackpy.peabody.writer import write_environment
+from jackpy.scene.cad import CADObject, add_cad, import_cad
+
+if TYPE_CHECKING:
+    from jackpy.ui.app import App
+
+SIDECAR_SUFFIX = ".jackpy.json"
+FORMAT = "jackpy-session"
+VERSION = 1
+
+
+class SessionError(JackpyError):
+    """A session file is missing, malformed, or names things the scene lacks."""
+
+
+def figures_dir() -> Path | None:
+    """The project's ``figures/`` directory (Peabody files of the standard objects), if present."""
+    for base in (Path(os.environ.get("JACKPY_FIGURES", "")), Path(jackpy.__file__).resolve().parents[2] / "figures"):
+        if str(base) and (base / "chair.fig").is_file():
+            return base
+    return None
+
+
+def default_scene() -> tuple[Environment, Path | None]:
+    """The scene ``jackpy`` opens with: a standing figure, a chair and a work table.
+
+    Returns the environment and the directory its included files are relative to.
+    """
+    from jackpy.peabody.synthetic import human_like_tree
+
+    env = Environment()
+    env.add(human_like_tree())
+    base = figures_dir()
+    if base is not None:
+        for name, place in (("worktable.fig", (0.0, 0.0, 0.75)), ("chair.fig", (0.9, 0.0, 0.2))):
+            for fig in read_figures(base / name):
+                fig.location = np.eye(4)
+                fig.location[:3, 3] = place
+                env.add(fig)
+            env.includes.append(name)
+    return env, base
+
+
+def sidecar_path(env_path: Path) -> Path:
+    """``NAME.env`` → ``NAME.jackpy.json``."""
+    return Path(env_path).with_suffix(SIDECAR_SUFFIX)
+
+
+# ---------------------------------------------------------------------- JSON
+def _m(a: np.ndarray) -> list[float]:
+    return [float(x) for x in np.asarray(a, float).reshape(-1)]
+
+
+def session_dict(app: "App") -> dict[str, Any]:
+    """The sidecar content for the app's current state."""
+    cam = app.camera
+    figs: dict[str, Any] = {}
+    for name, fig in app.env.figures.items():
+        entry: dict[str, Any] = {"q": _m(fig.q), "location": _m(fig.location)}
+        if isinstance(fig, CADObject):
+            s = fig.settings
+            entry["cad"] = {"source": str(Path(s.source).resolve()), "units": s.units, "up": s.up}
+        figs[name] = entry
+    return {
+        "format": FORMAT, "version": VERSION,
+        "settings": asdict(app.settings),
+        "camera": {"target": _m(cam.target), "distance": cam.distance, "yaw": cam.yaw, "pitch": cam.pitch,
+                   "orthographic": cam.orthographic},
+        "figures": figs,
+        "goals": [{"key": g.key, "figure": g.figure, "site": g.site, "kind": g.kind, "target": _m(g.target),
+                   "enabled": g.enabled, "weight": g.weight, "priority": g.priority, "chain": g.chain,
+                   "manip": _m(g.manip), "offset": _m(g.offset)} for g in app.goals],
+    }
+
+
+def _matrix(values: Any, shape: tuple[int, ...], where: str) -> np.ndarray:
+    try:
+        a = np.asarray(values, dtype=float).reshape(shape)
+    except (TypeError, ValueError):
+        raise SessionError(f"{where}: expected {int(np.prod(shape))} numbers") from None
+    return a
+
+
+# ---------------------------------------------------------------------- save / open
+def save_session(app: "App", path: str | os.PathLike[str], *, remember: bool = True) -> None:
+    """Write the scene to ``path`` (``.env``) and its sidecar, atomically."""
+    path = Path(path)
+    if path.suffix.lower() != ".env":
+        path = path.with_suffix(".env")
+    path.parent.mkdir(parents=True, exist_ok=True)
+    env = app.env
+    write_environment(path, env, source_dir=app.scene_dir)
+    atomic_write_text(sidecar_path(path), json.dumps(session_dict(app), indent=1) + "\n")
+    if remember:
+        app.session_path = path
+        app.scene_dir = path.parent
+        app.dirty = False
+        app.info(f"saved {path}")
+
+
+def load_session(path: str | os.PathLike[str]) -> tuple[Environment, dict[str, Any] | None]:
+    """Read a ``.env`` file and its sidecar (None when absent); CAD objects are re-imported."""
+    path = Path(path)
+    if not path.is_file():
+        raise SessionError(f"{path}: no such scene file")
+    side = sidecar_path(path)
+    data = None
+    if side.is_file():
+        try:
+            data = json.loads(side.read_text(encoding="utf-8"))
+        except (OSError, json.JSONDecodeError) as exc:
+            raise SessionError(f"{side}: not a readable session sidecar ({exc})") from None
+        if not isinstance(data, dict) or data.get("format") != FORMAT:
+            raise SessionError(f"{side}: not a jackpy session sidecar")
+    figs = (data or {}).get("figures", {})
+    env = read_environment(path, require_geometry=not any("cad" in f for f in figs.values()))
+    for name, entry in figs.items():
+        if "cad" in entry and name in env.figures:
+            cad = entry["cad"]
+            obj = import_cad(cad["source"], cad.get("units", "m"), cad.get("up", "y"), name)
+            env.figures[name] = obj
+    for name, entry in figs.items():
+        fig = env.figures.get(name)
+        if fig is None:
+            raise SessionError(f"{side}: figure {name!r} is not in {path.name}")
+        fig.q = _matrix(entry["q"], (fig.ndof,), f"{side}: figure {name!r} q")
+        fig.location = _matrix(entry["location"], (4, 4), f"{side}: figure {name!r} location")
+    return env, data
+
+
+def apply_session(app: "App", env: Environment, data: dict[str, Any] | None, base: Path | None) -> None:
+    """Show a loaded scene with its goals, settings and camera."""
+    from jackpy.ui.app import GoalEntry, Settings
+
+    goals = None
+    if data is not None:
+        known = {f.name for f in fields(Settings)}
+        app.settings = Settings(**{k: v for k, v in data.get("settings", {}).items() if k in known})
+        goals = []
+        for g in data.get("goals", []):
+            where = f"goal {g.get('key')!r}"
+            if g.get("figure") not in env.figures:
+                raise SessionError(f"{where}: unknown figure {g.get('figure')!r}")
+            goals.append(GoalEntry(g["key"], g["figure"], g["site"], g["kind"],
+                                   _matrix(g["target"], (4, 4), where), bool(g["enabled"]), float(g["weight"]),
+                                   int(g["priority"]), g.get("chain"), _matrix(g["manip"], (4, 4), where),
+                                   _matrix(g["offset"], (3, 3), where)))
+    app.scene_dir = base
+    app.set_environment(env, goals)
+    for name, fig in env.figures.items():
+        if isinstance(fig, CADObject):
+            app.view.cad_figures.add(name)
+    if data is not None and "camera" in data:
+        c = data["camera"]
+        cam = app.camera
+        cam.target = _matrix(c["target"], (3,), "camera target")
+        cam.distance, cam.yaw, cam.pitch = float(c["distance"]), float(c["yaw"]), float(c["pitch"])
+        cam.orthographic = bool(c.get("orthographic", False))
+
+
+def open_session(app: "App", path: str | os.PathLike[str]) -> None:
+    """Replace the app's scene with the one saved at ``path``."""
+    path = Path(path)
+    env, data = load_session(path)
+    apply_session(app, env, data, path.parent)
+    app.session_path = path
+    app.dirty = False
+    app.info(f"opened {path}")
+
+
+def new_scene(app: "App") -> None:
+    """Replace the scene with the default one."""
+    env, base = default_scene()
+    app.scene_dir = base
+    app.set_environment(env)
+    app.session_path = None
+
+
+def import_cad_file(app: "App", path: str | os.PathLike[str], units: str = "m", up: str = "y") -> CADObject:
+    """Add a CAD file to the scene (drawn translucent; picked and moved like any object)."""
+    obj = add_cad(app.env, path, units, up)
+    app.view.cad_figures.add(obj.name)
+    app.info(f"imported {Path(path).name}: {obj.triangle_count} triangles")
+    return obj
+
+
+# ---------------------------------------------------------------------- recovery
+def recovery_path() -> Path:
+    """Where autosave writes: ``$JACKPY_HOME/recovery/recovery.env`` (default ``~/.jackpy``)."""
+    home = Path(os.environ.get("JACKPY_HOME", Path.home() / ".jackpy"))
+    return home / "recovery" / "recovery.env"
+
+
+def autosave(app: "App") -> None:
+    """Write the recovery pair (without changing the session's own path)."""
+    save_session(app, recovery_path(), remember=False)
+
+
+def pending_recovery() -> Path | None:
+    """The recovery file a crashed run left behind, if any."""
+    p = recovery_path()
+    return p if p.is_file() else None
+
+
+def recover(app: "App", path: Path) -> None:
+    """Open the recovery file as an unsaved scene, then delete it."""
+    open_session(app, path)
+    app.session_path = None
+    app.dirty = True
+    discard_recovery(path)
+
+
+def discard_recovery(path: Path) -> None:
+    """Delete a recovery pair (after recovering it, declining it, or a clean exit)."""
+    for p in (path, sidecar_path(path)):
+        p.unlink(missing_ok=True)
