@@ -1,0 +1,2 @@
+def match_arm(figure, goal, cols):
+    return None

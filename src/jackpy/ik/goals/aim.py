@@ -1,0 +1,45 @@
+"""Aiming-at goal (3.16-3.18): the site's axis ``v`` points at ``p``; ``P = c^2 |u - v|^2``.
+
+``u = (p - r)/|p - r|`` with ``r`` the site origin. Both ``r`` and ``v`` move with the chain. The
+Jacobian of ``u`` is ``-(I - u u^T)/|p - r|``, which gives the corrected gradient of §3.6-B:
+``grad_r P = (2c^2/|p - r|)(v - u (u.v))`` (cubic denominator, not the printed square).
+Within 1e-9 m of the target ``u`` is taken as ``v``: no NaN, zero pull.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from jackpy.ik.goals.base import Chain, Context, GoalEval, SiteGoal, angle_deg, point3, unit
+
+
+def aim_gradient_r(p: np.ndarray, r: np.ndarray, v: np.ndarray, c: float = 1.0) -> np.ndarray:
+    """``grad_r P`` of the aim potential (corrected eq. 3.17, cubic denominator)."""
+    d = p - r
+    n = np.linalg.norm(d)
+    return 2.0 * c * c * (n * n * v - (d @ v) * d) / n ** 3
+
+
+class Aim(SiteGoal):
+    """Point the site axis ``axis`` (site frame, default +z) at the world point ``target``."""
+
+    def __init__(self, site: str, target: np.ndarray, axis: np.ndarray = (0.0, 0.0, 1.0),
+                 chain: Chain = None, weight: float = 1.0, c: float = 1.0, name: str | None = None) -> None:
+        super().__init__(site, chain, weight, name)
+        self.target = point3(target)
+        self.axis = unit(axis, "aim axis")
+        self.c = float(c)
+
+    def evaluate(self, ctx: Context) -> GoalEval:
+        w = ctx.site(self.seg, self.location)
+        r = w[:3, 3]
+        v = w[:3, :3] @ self.axis
+        d = self.target - r
+        n = float(np.linalg.norm(d))
+        Jv = ctx.vector_jacobian(self.seg, v)
+        if n < 1e-9:
+            return GoalEval(np.zeros(3), np.zeros_like(Jv))
+        u = d / n
+        Jr = ctx.point_jacobian(self.seg, r)
+        Ju = -(Jr - np.outer(u, u @ Jr)) / n
+        return GoalEval(self.c * (u - v), self.c * (Ju - Jv), degrees=angle_deg(u, v))

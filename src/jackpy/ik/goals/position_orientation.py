@@ -1,0 +1,35 @@
+"""Position+orientation goal (3.15): ``w_p |p - r|^2 + w_o (c_x^2 |x_g - x_e|^2 + c_y^2 |y_g - y_e|^2)``.
+
+The blend weights satisfy ``w_p + w_o = 1``; ``position_weight`` is ``w_p``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from jackpy.ik.goals.base import Chain, Context, GoalEval, SiteGoal
+from jackpy.ik.goals.orientation import orientation_terms
+
+
+class PositionOrientation(SiteGoal):
+    """Bring ``site`` onto the frame ``target`` (world 4x4): origin and x/y axes."""
+
+    def __init__(self, site: str, target: np.ndarray, chain: Chain = None, weight: float = 1.0,
+                 position_weight: float = 0.5, cx: float = 1.0, cy: float = 1.0,
+                 name: str | None = None) -> None:
+        super().__init__(site, chain, weight, name)
+        if not 0.0 <= position_weight <= 1.0:
+            raise ValueError(f"position_weight must lie in [0, 1], not {position_weight}")
+        self.target = np.asarray(target, dtype=float).reshape(4, 4).copy()
+        self.position_weight = float(position_weight)
+        self.cx, self.cy = float(cx), float(cy)
+
+    def evaluate(self, ctx: Context) -> GoalEval:
+        w = ctx.site(self.seg, self.location)
+        r = w[:3, 3]
+        sp, so = np.sqrt(self.position_weight), np.sqrt(1.0 - self.position_weight)
+        fo, Jo, deg = orientation_terms(ctx, self.seg, w, self.target[:3, :3], self.cx, self.cy)
+        dp = r - self.target[:3, 3]
+        f = np.concatenate([sp * dp, so * fo])
+        J = np.vstack([sp * ctx.point_jacobian(self.seg, r), so * Jo])
+        return GoalEval(f, J, metres=float(np.linalg.norm(dp)), degrees=deg)

@@ -1,0 +1,251 @@
+"""An IK problem: a figure, goals at priority levels, locked joints and per-DOF stiffness.
+
+The free variables are those of :class:`~jackpy.peabody.groups.VariableMap` (ungrouped DOFs, then
+joint-group angles) that some goal's chain may move, less the locked ones. Following §3.6-E every
+goal sees *all* of these variables that move its end effector, so the gradient assembled here is the
+exact gradient of the weighted potential over the variables. The solver works in scaled variables
+``z = x / s`` (stiffness, §3.8): a DOF with scale ``s < 1`` is reluctant to move, ``s = 0`` locks it.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from jackpy.errors import FigureError
+from jackpy.ik.goals.base import Context, Goal, GoalEval
+from jackpy.ik.goals.combine import AnyOf
+from jackpy.peabody.groups import VariableMap
+
+if TYPE_CHECKING:
+    from jackpy.ik.arm7 import ArmChain
+    from jackpy.peabody.kinematics import Kinematics
+    from jackpy.peabody.model import Figure
+
+
+class Problem:
+    """Goals on one figure. ``add(goal, level)``: level 0 is the highest priority (see :mod:`.priorities`)."""
+
+    def __init__(self, figure: "Figure") -> None:
+        self.figure = figure
+        self._entries: list[tuple[Goal, int]] = []
+        self._locked: set[str] = set()
+        self._scale: dict[str, np.ndarray] = {}
+        self._compiled: Compiled | None = None
+
+    # ----- editing ------------------------------------------------------------------------------
+    def add(self, goal: Goal, level: int = 0) -> Goal:
+        """Add ``goal`` at priority ``level`` (0 highest; same level = weighted sum); returns it."""
+        if level < 0:
+            raise ValueError(f"priority level must be >= 0, not {level}")
+        self._entries.append((goal, int(level)))
+        self._compiled = None
+        return goal
+
+    def remove(self, goal: Goal) -> None:
+        """Remove ``goal`` (by identity)."""
+        self._entries = [(g, lv) for g, lv in self._entries if g is not goal]
+        self._compiled = None
+
+    def lock(self, *joints: str) -> None:
+        """Remove the DOFs of ``joints`` (or joint-group names) from the variables."""
+        for j in joints:
+            self._check_name(j)
+        self._locked.update(joints)
+        self._compiled = None
+
+    def unlock(self, *joints: str) -> None:
+        self._locked.difference_update(joints)
+        self._compiled = None
+
+    def set_scale(self, joint: str, scale: float | Sequence[float]) -> None:
+        """Per-DOF stiffness scale of a joint or joint group (§3.8): 1 normal, 0.5 stiffer, 0 locked.
+
+        One optimisation unit of the DOF is ``scale`` radians (metres); a gradient method moves
+        scaled-down DOFs less, so other joints take the motion.
+        """
+        n = self._check_name(joint)
+        s = np.broadcast_to(np.asarray(scale, dtype=float), (n,)).copy()
+        if np.any(s < 0) or not np.all(np.isfinite(s)):
+            raise ValueError(f"scale of {joint!r} must be finite and >= 0, not {s.tolist()}")
+        self._scale[joint] = s
+        self._compiled = None
+
+    def invalidate(self) -> None:
+        """Recompile on the next solve (after changing a goal's site or chain, or the figure)."""
+        self._compiled = None
+
+    @property
+    def goals(self) -> list[Goal]:
+        return [g for g, _ in self._entries]
+
+    def level_of(self, goal: Goal) -> int:
+        for g, lv in self._entries:
+            if g is goal:
+                return lv
+        raise KeyError(goal.name)
+
+    def _check_name(self, name: str) -> int:
+        if name in self.figure.groups:
+            return self.figure.groups[name].nangles
+        return self.figure.joint(name).ndof
+
+    # ----- compiled form ------------------------------------------------------------------------
+    def compile(self) -> "Compiled":
+        """The flattened form the solver uses (cached until the problem or figure topology changes)."""
+        kin = self.figure.kinematics()
+        if self._compiled is None or self._compiled.kin is not kin:
+            if not self._entries:
+                raise FigureError("the IK problem has no goals")
+            self._compiled = Compiled(self, kin)
+        return self._compiled
+
+
+@dataclass
+class Evaluation:
+    """Everything from one forward pass at scaled variables ``z``.
+
+    ``levels[k] = (F, J)``: the stacked weighted residuals of level ``k`` and their Jacobian with
+    respect to ``z``; the level's potential is ``F.F`` and its gradient ``2 J^T F``.
+    """
+
+    z: np.ndarray
+    q: np.ndarray
+    goal_evals: list[GoalEval]
+    levels: dict[int, tuple[np.ndarray, np.ndarray]]
+    selection: tuple[int, ...]
+
+    def potential(self, level: int) -> float:
+        F = self.levels[level][0]
+        return float(F @ F)
+
+    def stacked(self, levels: Iterable[int]) -> tuple[np.ndarray, np.ndarray]:
+        """Residuals and Jacobians of several levels stacked."""
+        parts = [self.levels[k] for k in levels]
+        return np.concatenate([p[0] for p in parts]), np.vstack([p[1] for p in parts])
+
+
+class Compiled:
+    """Index maps of a :class:`Problem`: variables, bounds, linear rows and goal evaluation."""
+
+    def __init__(self, problem: Problem, kin: "Kinematics") -> None:
+        fig = problem.figure
+        self.problem, self.kin, self.figure = problem, kin, fig
+        self.entries = list(problem._entries)
+        for g, _ in self.entries:
+            g.bind(fig)
+        self.levels = sorted({lv for _, lv in self.entries})
+        self.anyofs = [a for g, _ in self.entries for a in _anyofs(g)]
+        vm = VariableMap(fig)
+        self.vm = vm
+        nfree = vm.free_dofs.size
+        chain = np.logical_or.reduce([g.chain_mask() for g, _ in self.entries])
+        # per-x: moved by some chain, its scale, locked?
+        wanted = np.zeros(vm.nx, dtype=bool)
+        scale = np.ones(vm.nx)
+        wanted[:nfree] = chain[vm.free_dofs]
+        dof_scale = np.ones(fig.ndof)
+        dof_locked = np.zeros(fig.ndof, dtype=bool)
+        for name in problem._locked:
+            if name in fig.joints:
+                dof_locked[fig.joint_dof_slice(name)] = True
+        for name, s in problem._scale.items():
+            if name in fig.joints:
+                dof_scale[fig.joint_dof_slice(name)] = s
+        scale[:nfree] = dof_scale[vm.free_dofs]
+        locked = np.zeros(vm.nx, dtype=bool)
+        locked[:nfree] = dof_locked[vm.free_dofs]
+        for g, idx, sl in vm.group_slices:
+            wanted[sl] = chain[idx].any()
+            locked[sl] = dof_locked[idx].any() or g.name in problem._locked
+            if g.name in problem._scale:
+                scale[sl] = problem._scale[g.name]
+        use = wanted & ~locked & (scale > 0)
+        self.vidx = np.flatnonzero(use)
+        self.nv = self.vidx.size
+        self.scale = scale[self.vidx]
+        self.lower = vm.lower[self.vidx] / self.scale
+        self.upper = vm.upper[self.vidx] / self.scale
+        self.n_free_vars = int(np.count_nonzero(self.vidx < nfree))
+        free_q = vm.free_dofs[self.vidx[:self.n_free_vars]]
+        # groups with at least one variable: (group, member DOFs, x slice, its used angles)
+        self.groups = [(g, idx, sl, np.flatnonzero(use[sl])) for g, idx, sl in vm.group_slices
+                       if use[sl].any()]
+        self.cols = np.concatenate([free_q] + [idx for _, idx, _, _ in self.groups]).astype(int)
+        self.free_q = free_q
+        A, b = vm.linear_constraints()
+        self.A_x, self.b_x = A, b
+        self.arm: ArmChain | None = None
+        if len(self.entries) == 1 and not self.groups:
+            from jackpy.ik.arm7 import match_arm
+
+            self.arm = match_arm(fig, self.entries[0][0], self.cols)
+
+    # ----- variables ------------------------------------------------------------------------------
+    def start(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """Current full ``x``, scaled variables ``z`` and the linear rows ``A z <= b`` at fixed rest."""
+        x = self.vm.x()
+        z = x[self.vidx] / self.scale
+        if self.A_x.shape[0]:
+            rest = x.copy()
+            rest[self.vidx] = 0.0
+            A = self.A_x[:, self.vidx] * self.scale
+            b = self.b_x - self.A_x @ rest
+            keep = np.any(A != 0.0, axis=1)
+            return x, z, A[keep], b[keep]
+        return x, z, np.zeros((0, self.nv)), np.zeros(0)
+
+    def x_of(self, x_base: np.ndarray, z: np.ndarray) -> np.ndarray:
+        x = x_base.copy()
+        x[self.vidx] = z * self.scale
+        return x
+
+    def q_of(self, q_base: np.ndarray, x: np.ndarray) -> np.ndarray:
+        q = q_base.copy()
+        q[self.free_q] = x[self.vidx[:self.n_free_vars]]
+        for g, idx, sl, _ in self.groups:
+            q[idx] = g.driver(x[sl])
+        return q
+
+    def apply(self, x: np.ndarray) -> None:
+        """Write variables ``x`` into the figure."""
+        self.vm.apply(x)
+
+    # ----- evaluation ------------------------------------------------------------------------------
+    def evaluate(self, x_base: np.ndarray, q_base: np.ndarray, z: np.ndarray) -> Evaluation:
+        """One forward pass; every goal's residual and Jacobian (over ``z``) from it."""
+        x = self.x_of(x_base, z)
+        q = self.q_of(q_base, x)
+        fk = self.kin.forward(q, self.figure.location)
+        ctx = Context(self.kin, fk, self.cols)
+        if self.groups:
+            M = np.zeros((self.cols.size, self.nv))
+            nf = self.n_free_vars
+            M[np.arange(nf), np.arange(nf)] = 1.0
+            row, col = nf, nf
+            for g, idx, sl, used in self.groups:
+                jac = np.asarray(g.driver.jacobian(x[sl]), dtype=float)[:, used]
+                M[row:row + idx.size, col:col + used.size] = jac
+                row += idx.size
+                col += used.size
+            M *= self.scale
+        evals, per_level = [], {lv: ([], []) for lv in self.levels}
+        for g, lv in self.entries:
+            e = g.evaluate(ctx)
+            w = np.sqrt(g.weight)
+            J = e.J @ M if self.groups else e.J * self.scale
+            evals.append(e)
+            per_level[lv][0].append(w * e.f)
+            per_level[lv][1].append(w * J)
+        levels = {lv: (np.concatenate(fs), np.vstack(js)) for lv, (fs, js) in per_level.items()}
+        return Evaluation(z, q, evals, levels, tuple(a.selected for a in self.anyofs))
+
+
+def _anyofs(goal: Goal) -> list[AnyOf]:
+    out = [goal] if isinstance(goal, AnyOf) else []
+    for sub in getattr(goal, "goals", []):
+        out.extend(_anyofs(sub))
+    return out

@@ -1,0 +1,362 @@
+"""Variable-metric (BFGS) minimisation with Rosen/Goldfarb projection onto linear limits (book §3.3).
+
+The variables are the problem's scaled variables ``z`` (see :mod:`.problem`); the limits are the box
+``lower <= z <= upper`` and the joint groups' rows ``A z <= b``. The method is Goldfarb's (1969)
+extension of the variable-metric method to linear inequalities:
+
+- **Feasible iterates.** The start is clamped (and projected onto the rows); every trial point lies
+  inside every limit, because steps never exceed the largest feasible step ``alpha_max``.
+- **Working set and projected metric.** ``H`` is an inverse-Hessian approximation whose range is the
+  null space of the active constraints (a variable at a bound has a zero row and column). Hitting a
+  limit adds it (``H <- H - H a a^T H / a^T H a``); a constraint whose Lagrange multiplier is negative
+  is dropped (``H <- H + P a a^T P / a^T B0 P a``), one at a time, when the projected gradient has
+  become small against that multiplier.
+- **Initial metric.** ``H0`` is the inverse of the Gauss-Newton matrix ``2 J^T J + mu I`` of the
+  sum-of-squares potential (Woodbury, O(n^2 m)), restricted to the working set: good curvature from
+  the first step. It is reset when a disjunction switches, or when ``H`` stops giving descent.
+  ``mu`` in scaled variables is what makes stiffness pick among redundant solutions.
+- **BFGS** inverse update after each step (skipped when ``s.y`` is not positive).
+- **Line search** on ``(0, alpha_max]``: Armijo backtracking with quadratic interpolation.
+- **Termination**: every goal within ``tol_position``/``tol_angle`` (achieved); a KKT point (step
+  below ``tol_step`` and all multipliers non-negative) or no further decrease; the iteration cap.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from jackpy.errors import FigureError
+from jackpy.ik.priorities import Manifold
+from jackpy.ik.problem import Compiled, Evaluation, Problem
+from jackpy.ik.result import ACHIEVED, ITERATION_LIMIT, UNREACHABLE, GoalReport, Result
+
+C1 = 1e-4  # Armijo constant
+BOUND_TOL = 1e-12
+MU_SCALE = 10.0
+MU_FLOOR = 1e-3
+
+
+def solve(problem: Problem, *, max_iterations: int = 100, tol_position: float = 1e-4,
+          tol_angle: float = 0.05, tol_step: float = 1e-10, analytic: bool = True,
+          apply: bool = True) -> Result:
+    """Solve ``problem`` from the figure's current posture (a warm start).
+
+    ``tol_position`` metres and ``tol_angle`` degrees decide when a goal is achieved; ``tol_step``
+    (scaled radians) is the KKT step tolerance; ``max_iterations`` caps the work (an interactive
+    frame budget; the posture reached is still feasible and better). With ``analytic`` a problem
+    that is exactly one 6-D goal on a 7-DOF arm chain starts from the closed-form solution (see
+    :mod:`.arm7`). With ``apply`` the result is written into the figure.
+    """
+    comp = problem.compile()
+    run = _Run(comp, tol_position, tol_angle, tol_step)
+    result = None
+    if analytic and comp.arm is not None:
+        z = comp.arm.seed(comp, run.x_base, run.z)
+        if z is not None:
+            run.z = z
+            result_ev = run.evaluate(z)
+            if run.achieved(result_ev, comp.levels[-1]):
+                result = run.result(result_ev, ACHIEVED, 0, analytic=True)
+    if result is None:
+        ev = run.evaluate(run.z)
+        status = ACHIEVED
+        for i, level in enumerate(comp.levels):
+            manifold = None
+            if i:
+                hi = comp.levels[:i]
+                manifold = Manifold(hi, float(sum(ev.potential(k) for k in hi)))
+            ev, status = run.minimise(ev, level, manifold, max_iterations - run.iterations)
+            if status == ITERATION_LIMIT:
+                break
+        if status != ITERATION_LIMIT:
+            status = ACHIEVED if run.achieved(ev, comp.levels[-1]) else UNREACHABLE
+        result = run.result(ev, status, run.iterations, analytic=comp.arm is not None and analytic)
+    if apply:
+        comp.apply(comp.x_of(run.x_base, run.z))
+    return result
+
+
+class _Run:
+    """State of one solve: bases, limits, counters."""
+
+    def __init__(self, comp: Compiled, tol_position: float, tol_angle: float, tol_step: float,
+                 memory: int = 5) -> None:
+        self.comp = comp
+        self.tol_position, self.tol_angle, self.tol_step = tol_position, tol_angle, tol_step
+        self.x_base, z, self.A, self.b = comp.start()
+        self.q_base = comp.figure.q
+        self.lo, self.hi = comp.lower, comp.upper
+        self.z = self._feasible(z)
+        self.iterations = 0
+        self.memory = memory
+        self.evaluations = 0
+
+    # ----- helpers ----------------------------------------------------------------------------------
+    def _feasible(self, z: np.ndarray) -> np.ndarray:
+        """Clamp into the box and, if rows are violated, project (Dykstra) onto box and rows."""
+        z = np.clip(z, self.lo, self.hi)
+        if not self.A.shape[0] or np.all(self.A @ z <= self.b + 1e-12):
+            return z
+        y, p, qr = z.copy(), np.zeros_like(z), np.zeros_like(z)
+        for _ in range(500):
+            w = np.clip(y + p, self.lo, self.hi)
+            p = y + p - w
+            v = w + qr
+            viol = self.A @ v - self.b
+            for i in np.flatnonzero(viol > 0):
+                a = self.A[i]
+                v = v - max(0.0, a @ v - self.b[i]) / (a @ a) * a
+            qr = w + qr - v
+            y = v
+            if np.all(self.A @ y <= self.b + 1e-12) and np.all((y >= self.lo - 1e-12) & (y <= self.hi + 1e-12)):
+                break
+        y = np.clip(y, self.lo, self.hi)
+        if np.any(self.A @ y > self.b + 1e-9):
+            raise FigureError("the joint groups' linear limits cannot be met within the joint limits")
+        return y
+
+    def evaluate(self, z: np.ndarray) -> Evaluation:
+        self.evaluations += 1
+        return self.comp.evaluate(self.x_base, self.q_base, np.clip(z, self.lo, self.hi))
+
+    def achieved(self, ev: Evaluation, up_to: int) -> bool:
+        for (g, lv), e in zip(self.comp.entries, ev.goal_evals):
+            if lv <= up_to and (e.metres > self.tol_position or e.degrees > self.tol_angle):
+                return False
+        return True
+
+    def step_limit(self, z: np.ndarray, d: np.ndarray, rows: np.ndarray | None = None) -> float:
+        """Largest ``alpha`` with ``z + alpha d`` inside the box and the (inactive) rows."""
+        return self._ratio(z, d, np.ones(z.size, dtype=bool), rows)[0]
+
+    def _ratio(self, z: np.ndarray, d: np.ndarray, free: np.ndarray,
+               inactive_rows: np.ndarray | None) -> tuple[float, int, int]:
+        """(alpha_max, blocking variable or -1, blocking row or -1)."""
+        alpha, var, row = np.inf, -1, -1
+        with np.errstate(divide="ignore", invalid="ignore"):
+            up = free & (d > 0)
+            dn = free & (d < 0)
+            r = np.full(z.size, np.inf)
+            r[up] = (self.hi[up] - z[up]) / d[up]
+            r[dn] = (self.lo[dn] - z[dn]) / d[dn]
+            if r.size:
+                var = int(np.argmin(r))
+                alpha = max(float(r[var]), 0.0)
+            if self.A.shape[0]:
+                rows = np.arange(self.A.shape[0]) if inactive_rows is None else inactive_rows
+                if rows.size:
+                    Ad = self.A[rows] @ d
+                    rr = np.full(rows.size, np.inf)
+                    pos = Ad > 1e-15
+                    rr[pos] = (self.b[rows][pos] - self.A[rows][pos] @ z) / Ad[pos]
+                    k = int(np.argmin(rr))
+                    if rr[k] < alpha:
+                        alpha, var, row = max(float(rr[k]), 0.0), -1, int(rows[k])
+        if not np.isfinite(alpha):
+            var = -1
+        return alpha, var, row
+
+    # ----- the metric -------------------------------------------------------------------------------
+    def minimise(self, ev: Evaluation, level: int, manifold: Manifold | None,
+                 budget: int) -> tuple[Evaluation, str]:
+        """Minimise level ``level`` from ``ev`` (holding ``manifold``); (final evaluation, status)."""
+        z = ev.z
+        F, J = ev.levels[level]
+        G, g = float(F @ F), 2.0 * J.T @ F
+        at_lo, at_hi = z <= self.lo + BOUND_TOL, z >= self.hi - BOUND_TOL
+        fixed = (at_lo & (g > 0)) | (at_hi & (g < 0)) | (self.lo == self.hi)
+        side = np.where(at_hi, 1.0, -1.0)
+        rows = [int(i) for i in np.flatnonzero(self.A @ z >= self.b - 1e-10)] if self.A.shape[0] else []
+        metric = Metric(self.memory)
+        small = 0
+        end = self.iterations + budget
+        held: set[tuple[int, int]] = set()  # added at this iterate with a zero step: not dropped again
+        for _ in range(budget * 4 + 2 * z.size + 8):
+            if self.iterations >= end:
+                break
+            if self.achieved(ev, level):
+                return ev, ACHIEVED
+            free = ~fixed
+            N = manifold.tangent_rows(ev, free) if manifold else np.zeros((0, z.size))
+            C = np.vstack([self.A[rows] * free, N]) if rows else N
+            metric.seed(J, free, G)
+            d = -metric.project(g, C)
+            # multipliers of the working set: drop the most negative when it dominates
+            lam_b, lam_r, pg = self._multipliers(g, free, side, rows, N)
+            fixed_idx = np.flatnonzero(fixed)
+            for kind, idx in held:
+                if kind == 0:
+                    lam_b[np.searchsorted(fixed_idx, idx)] = np.inf
+                elif idx in rows:
+                    lam_r[rows.index(idx)] = np.inf
+            worst_b = int(np.argmin(lam_b)) if lam_b.size else -1
+            worst_r = int(np.argmin(lam_r)) if lam_r.size else -1
+            lb = lam_b[worst_b] if worst_b >= 0 else 0.0
+            lr = lam_r[worst_r] if worst_r >= 0 else 0.0
+            stationary = np.max(np.abs(d), initial=0.0) <= self.tol_step
+            if min(lb, lr) < -1e-12 and (stationary or -min(lb, lr) >= 0.5 * pg):
+                if lb <= lr:
+                    fixed[int(fixed_idx[worst_b])] = False
+                else:
+                    rows.pop(worst_r)
+                continue
+            if stationary:
+                return ev, "stationary"
+            gd = float(g @ d)
+            if gd >= 0.0:
+                if not metric.pairs:
+                    return ev, "stationary"
+                metric.clear()
+                continue
+            inactive = np.setdiff1d(np.arange(self.A.shape[0]), rows)
+            alpha_max, var, row = self._ratio(z, d, free, inactive)
+            if alpha_max <= 1e-15 and (var >= 0 or row >= 0):
+                fixed, side, rows = self._add(fixed, side, rows, var, row, d)
+                held.add((0, var) if var >= 0 else (1, row))
+                continue
+            new = self._line_search(ev, z, d, G, gd, min(1.0, alpha_max), level, manifold, free, rows)
+            self.iterations += 1
+            if new is None:
+                if not metric.pairs:
+                    return ev, "stationary"
+                metric.clear()
+                continue
+            ev_new, alpha = new
+            held.clear()
+            z_new = ev_new.z
+            F_new, J_new = ev_new.levels[level]
+            G_new, g_new = float(F_new @ F_new), 2.0 * J_new.T @ F_new
+            if ev_new.selection != ev.selection:
+                metric.clear()
+            else:
+                metric.push(z_new - z, g_new - g)
+            if alpha >= alpha_max and (var >= 0 or row >= 0):
+                fixed, side, rows = self._add(fixed, side, rows, var, row, d)
+                if var >= 0:
+                    z_new = z_new.copy()
+                    z_new[var] = self.hi[var] if d[var] > 0 else self.lo[var]
+                    ev_new.z = z_new
+            small = small + 1 if G - G_new <= 1e-12 * G + 1e-18 else 0
+            ev, z, J, G, g = ev_new, z_new, J_new, G_new, g_new
+            self.z = z
+            if small >= 3:
+                return ev, "stationary"
+        return ev, ITERATION_LIMIT
+
+    def _multipliers(self, g: np.ndarray, free: np.ndarray, side: np.ndarray, rows: list[int],
+                     N: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
+        """(bound multipliers, row multipliers, inf-norm of the projected gradient)."""
+        E = np.vstack([self.A[rows] * free, N]) if rows else N
+        r = g.copy()
+        lam_r = np.zeros(0)
+        if E.shape[0]:
+            lam = np.linalg.lstsq(E[:, free].T, -g[free], rcond=None)[0]
+            r = g + E.T @ lam
+            lam_r = lam[:len(rows)]
+        fixed = ~free
+        lam_b = -side[fixed] * r[fixed]
+        pg = float(np.max(np.abs(r[free]), initial=0.0))
+        return lam_b, lam_r, pg
+
+    @staticmethod
+    def _add(fixed: np.ndarray, side: np.ndarray, rows: list[int], var: int, row: int,
+             d: np.ndarray) -> tuple[np.ndarray, np.ndarray, list[int]]:
+        """Add the blocking bound ``var`` or row ``row`` to the working set."""
+        if var >= 0:
+            fixed, side = fixed.copy(), side.copy()
+            fixed[var] = True
+            side[var] = 1.0 if d[var] > 0 else -1.0
+        else:
+            rows = rows + [row]
+        return fixed, side, rows
+
+    def _line_search(self, ev: Evaluation, z: np.ndarray, d: np.ndarray, G: float, gd: float,
+                     alpha: float, level: int, manifold: Manifold | None, free: np.ndarray,
+                     rows: list[int]) -> tuple[Evaluation, float] | None:
+        """Armijo backtracking on ``(0, alpha]``; with a manifold each trial is restored first."""
+        active_rows = self.A[rows] * free if rows else np.zeros((0, z.size))
+        for _ in range(30):
+            trial: Evaluation | None = self.evaluate(z + alpha * d)
+            if manifold is not None:
+                trial = manifold.restore(trial, free, lambda zz, dz: self._ratio(zz, dz, free, None)[0],
+                                         self.evaluate, active_rows)
+            if trial is not None:
+                Ft = trial.levels[level][0]
+                Gt = float(Ft @ Ft)
+                if np.isfinite(Gt) and Gt <= G + C1 * alpha * gd:
+                    return trial, alpha
+                denom = 2.0 * (Gt - G - gd * alpha) if np.isfinite(Gt) else 0.0
+                a_q = -gd * alpha * alpha / denom if denom > 0 else 0.1 * alpha
+                alpha = float(np.clip(a_q, 0.1 * alpha, 0.5 * alpha))
+            else:
+                alpha *= 0.25
+            if alpha * np.max(np.abs(d)) < 1e-14:
+                return None
+        return None
+
+    # ----- result -----------------------------------------------------------------------------------
+    def result(self, ev: Evaluation, status: str, iterations: int, analytic: bool) -> Result:
+        self.z = ev.z
+        reports = []
+        for (g, lv), e in zip(self.comp.entries, ev.goal_evals):
+            ok = e.metres <= self.tol_position and e.degrees <= self.tol_angle
+            reports.append(GoalReport(g.name, lv, float(e.f @ e.f), e.metres, e.degrees, ok))
+        total = float(sum(g.weight * r.potential for (g, _), r in zip(self.comp.entries, reports)))
+        return Result(status, iterations, self.evaluations, total, reports, ev.q.copy(), analytic)
+
+
+class Metric:
+    """Limited-memory BFGS inverse metric seeded with the current Gauss-Newton inverse.
+
+    ``H0 = (2 J^T J + mu I)^-1`` on the free variables (zero on fixed ones), applied by Woodbury in
+    O(n m); the last ``memory`` steps ``(s, y)`` update it by BFGS (two-loop recursion). Projection on
+    active rows ``C`` (Rosen/Goldfarb): ``Hp = H - H C^T (C H C^T)^+ C H``.
+    """
+
+    def __init__(self, memory: int) -> None:
+        self.memory = memory
+        self.pairs: list[tuple[np.ndarray, np.ndarray]] = []
+
+    def clear(self) -> None:
+        self.pairs.clear()
+
+    def push(self, s: np.ndarray, y: np.ndarray) -> None:
+        self.pairs.append((s, y))
+        del self.pairs[:-self.memory]
+
+    def seed(self, J: np.ndarray, free: np.ndarray, G: float) -> None:
+        self.free = free
+        self.Jf = J * free
+        self.mu = MU_SCALE * float(np.sqrt(max(G, 0.0))) + MU_FLOOR
+        self.K = np.linalg.inv(0.5 * self.mu * np.eye(J.shape[0]) + self.Jf @ self.Jf.T)
+
+    def _h0(self, V: np.ndarray) -> np.ndarray:
+        V = V * (self.free[:, None] if V.ndim == 2 else self.free)
+        return (V - self.Jf.T @ (self.K @ (self.Jf @ V))) / self.mu
+
+    def apply(self, V: np.ndarray) -> np.ndarray:
+        """``H @ V`` for a vector or an (n, k) block (two-loop recursion)."""
+        f = self.free[:, None] if V.ndim == 2 else self.free
+        q = V * f
+        stack = []
+        for s, y in reversed(self.pairs):
+            s, y = s * self.free, y * self.free
+            sy = float(s @ y)
+            if sy <= 1e-12 * np.linalg.norm(s) * np.linalg.norm(y) or sy <= 0.0:
+                continue
+            a = (s @ q) / sy
+            q = q - np.multiply.outer(y, a) if V.ndim == 2 else q - a * y
+            stack.append((s, y, sy, a))
+        r = self._h0(q)
+        for s, y, sy, a in reversed(stack):
+            b = (y @ r) / sy
+            r = r + np.multiply.outer(s, a - b) if V.ndim == 2 else r + (a - b) * s
+        return r
+
+    def project(self, g: np.ndarray, C: np.ndarray) -> np.ndarray:
+        """Projected ``H g`` with the rows ``C`` held (``C d = 0``)."""
+        Hg = self.apply(g)
+        if not C.shape[0]:
+            return Hg
+        HC = self.apply(C.T)
+        return Hg - HC @ (np.linalg.pinv(C @ HC, rcond=1e-12) @ (C @ Hg))
