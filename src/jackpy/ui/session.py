@@ -26,7 +26,7 @@ import numpy as np
 
 import jackpy
 from jackpy.atomic import atomic_write_text
-from jackpy.errors import JackpyError
+from jackpy.errors import SessionError
 from jackpy.peabody import Environment
 from jackpy.peabody.reader import read_environment, read_figures
 from jackpy.peabody.writer import write_environment
@@ -38,10 +38,6 @@ if TYPE_CHECKING:
 SIDECAR_SUFFIX = ".jackpy.json"
 FORMAT = "jackpy-session"
 VERSION = 1
-
-
-class SessionError(JackpyError):
-    """A session file is missing, malformed, or names things the scene lacks."""
 
 
 def figures_dir() -> Path | None:
@@ -63,7 +59,7 @@ def default_scene() -> tuple[Environment, Path | None]:
     env.add(human_like_tree())
     base = figures_dir()
     if base is not None:
-        for name, place in (("worktable.fig", (0.0, 0.0, 0.75)), ("chair.fig", (0.9, 0.0, 0.2))):
+        for name, place in (("worktable.fig", (1.2, 0.0, 0.1)), ("chair.fig", (-1.0, 0.0, 0.0))):
             for fig in read_figures(base / name):
                 fig.location = np.eye(4)
                 fig.location[:3, 3] = place

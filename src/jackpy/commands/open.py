@@ -1,0 +1,34 @@
+"""``jackpy open [SCENE]``: the interactive workbench window (``jackpy`` alone runs this)."""
+
+from __future__ import annotations
+
+import argparse
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("open", help="open the workbench window (on SCENE, or the default scene)")
+    p.add_argument("scene", nargs="?", default=None, help="scene file (.env or .fig) to open")
+    p.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    from pathlib import Path
+
+    from jackpy.ui import session
+    from jackpy.ui.app import App
+    from jackpy.ui.window import Window
+
+    env, base = session.default_scene()
+    app = App(env)
+    app.scene_dir = base
+    window = Window(app, "jackpy")
+    try:
+        if args.scene is not None:
+            session.open_session(app, Path(args.scene))
+        else:
+            window.ui.recovery_offer = str(p) if (p := session.pending_recovery()) else None
+        window.run(autosave=lambda: session.autosave(app))
+    finally:
+        window.close()
+    session.discard_recovery(session.recovery_path())
+    return 0
