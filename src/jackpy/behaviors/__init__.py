@@ -11,16 +11,21 @@ from jackpy.behaviors.auto_root import AutoRoot, AutoRootParams
 from jackpy.behaviors.balance import Balance, BalanceParams
 from jackpy.behaviors.base import Behavior, BehaviorBase, ParamSpec, describe
 from jackpy.behaviors.feet import Feet, FeetParams
+from jackpy.behaviors.gaze import Gaze, GazeParams
+from jackpy.behaviors.hands import Hands, HandsParams
+from jackpy.behaviors.limit_springs import LimitSprings, LimitSpringsParams
 from jackpy.behaviors.loop import BehaviorLoop, Frame, FrameReport
 from jackpy.behaviors.pelvis import Pelvis, PelvisParams
+from jackpy.behaviors.stepping import Stepping, SteppingParams
 from jackpy.behaviors.torso import Torso, TorsoParams
 
 
 def default_behaviors() -> list[Behavior]:
     """One instance of every behavior with default parameters, in frame order."""
-    return [AutoRoot(), Feet(), Pelvis(), Balance(), Torso()]
+    return [AutoRoot(), Feet(), Pelvis(), Balance(), Stepping(), Torso(), Gaze(), Hands(), LimitSprings()]
 
 
 __all__ = ["Anatomy", "AutoRoot", "AutoRootParams", "Balance", "BalanceParams", "Behavior", "BehaviorBase",
-           "BehaviorLoop", "Feet", "FeetParams", "Frame", "FrameReport", "ParamSpec", "Pelvis", "PelvisParams",
-           "Torso", "TorsoParams", "default_behaviors", "describe", "synthetic_anatomy"]
+           "BehaviorLoop", "Feet", "FeetParams", "Frame", "FrameReport", "Gaze", "GazeParams", "Hands",
+           "HandsParams", "LimitSprings", "LimitSpringsParams", "ParamSpec", "Pelvis", "PelvisParams", "Stepping",
+           "SteppingParams", "Torso", "TorsoParams", "default_behaviors", "describe", "synthetic_anatomy"]

@@ -66,7 +66,8 @@ class Anatomy:
 
     ``chest`` is an upper-torso site kept vertical (``chest_up`` its segment-local up);
     ``view`` the between-the-eyes site whose local ``view_forward`` the head aims;
-    ``eyes`` the eyeball segments (local forward ``eye_forward``) with their joints;
+    ``eyes`` a site at each eyeball's centre (segment-local forward ``eye_forward``), ``eye_joints``
+    their joints;
     ``springs`` are (joint, DOF index, extension angle, sign of flexion) of knees and elbows.
     """
 
@@ -79,7 +80,7 @@ class Anatomy:
     view: tuple[str, str]
     view_forward: np.ndarray
     neck_joints: list[str]
-    eyes: dict[str, str]
+    eyes: dict[str, tuple[str, str]]
     eye_joints: dict[str, str]
     eye_forward: np.ndarray
     feet: dict[str, FootSpec]
@@ -117,6 +118,6 @@ def synthetic_anatomy(figure: Figure) -> Anatomy:
     return Anatomy(
         pelvis="pelvis", pelvis_site="base", pelvis_forward=Z.copy(), pelvis_up=Y.copy(),
         chest=("vertebra17", "base"), chest_up=Y.copy(), view=("head", "view"), view_forward=Z.copy(),
-        neck_joints=["neck", "head"], eyes={s: f"eye_{s}" for s in SIDES},
+        neck_joints=["neck", "head"], eyes={s: (f"eye_{s}", "base") for s in SIDES},
         eye_joints={s: f"eye_{s}" for s in SIDES}, eye_forward=Z.copy(), feet=feet, hands=hands,
         springs=springs, leg_length=0.94, spine_joints=[f"spine{k + 1}" for k in range(17)])

@@ -26,17 +26,12 @@ tripod         thumb+2         thumb, index, middle tips meet                   
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
-
 import numpy as np
 
 from jackpy.behaviors.anatomy import HandSpec
-from jackpy.behaviors.base import BehaviorBase, param
+from jackpy.behaviors.base import param
 from jackpy.peabody.model import Figure
 from jackpy.peabody.transforms import rigid_inverse
-
-if TYPE_CHECKING:
-    from jackpy.behaviors.loop import Frame
 
 GRIPS = ("power", "precision", "disc", "small disc", "tripod")
 
@@ -219,21 +214,18 @@ def close_fingers(figure: Figure, hand: HandSpec, obj: GraspObject, params: Gras
     return GraspResult(p.grip, clear)
 
 
-def palm_goal(hand_normal_world_offset: float, obj: GraspObject, grip: str) -> np.ndarray:
-    """World pose (4x4) for the palm site: on the grip site's +z axis, ``standoff`` beyond the object's
-    surface, palm normal along the site's -z, fingers along the site's -y."""
+def palm_goal(hand: HandSpec, palm_location: np.ndarray, obj: GraspObject, grip: str) -> np.ndarray:
+    """World pose (4x4) for the palm site of ``hand`` (``palm_location`` its 4x4 in its segment):
+    on the grip site's +z axis, ``standoff`` beyond the object's surface, the palm facing the object
+    (palm normal along the site's -z) and the fingers along the site's +x, round the long axis."""
     g = GRIP_TYPES[grip]
     site = obj.pose @ obj.grip_site
-    out = site.copy()
-    out[:3, 3] = site[:3, 3] + site[:3, 2] * (obj.half_depth + g.standoff + hand_normal_world_offset)
+    r = site[:3, :3]
+    loc = palm_location[:3, :3]
+    f_local, n_local = loc.T @ hand.fingers, loc.T @ hand.normal
+    world = np.stack([r[:, 0], -r[:, 2], np.cross(r[:, 0], -r[:, 2])], axis=1)
+    local = np.stack([f_local, n_local, np.cross(f_local, n_local)], axis=1)
+    out = np.eye(4)
+    out[:3, :3] = world @ local.T
+    out[:3, 3] = site[:3, 3] + site[:3, 2] * (obj.half_depth + g.standoff)
     return out
-
-
-class Grasp(BehaviorBase):
-    """Grab-with-fingers: once a hand has reached its palm goal, closes the chosen grip's digits."""
-
-    name = "grasp"
-    order = 95
-
-    def __init__(self, params: GraspParams | None = None, enabled: bool = True) -> None:
-        super().__init__(params or GraspParams(), enabled)

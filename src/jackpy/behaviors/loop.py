@@ -27,7 +27,7 @@ import numpy as np
 from jackpy.behaviors.anatomy import SIDES, Anatomy
 from jackpy.behaviors.base import Behavior, BehaviorBase
 from jackpy.behaviors.state import BehaviorState, FootState, HandState
-from jackpy.behaviors.support import BalanceFrame, convex_hull, floor
+from jackpy.behaviors.support import BalanceFrame, convex_hull, floor, yaw_of
 from jackpy.ik import Problem, solve
 from jackpy.ik.goals import Aim, CentreOfMass, Goal
 from jackpy.peabody.model import Figure
@@ -93,6 +93,10 @@ class Frame:
             self._balance = self.loop.balance_frame_for({s: f.target for s, f in self.state.feet.items()})
         return self._balance
 
+    def invalidate_balance(self) -> None:
+        """Recompute the balance frame on next use (after feet goals changed)."""
+        self._balance = None
+
     def balance_params(self) -> tuple[float, float]:
         """(x, z) of the current COM."""
         return self.balance_frame().params(floor(self.com))
@@ -141,6 +145,7 @@ class BehaviorLoop:
         self.max_iterations = max_iterations
         self.tol_position = tol_position
         self.state = BehaviorState()
+        self._arm_lengths: dict[str, float] = {}
         self._footprints = self._footprint_locals()
         self._locked = self._pass_locks()
         self.reset_state()
@@ -200,9 +205,31 @@ class BehaviorLoop:
             corners = pts[:-1]
             low = corners[corners[:, 1] < corners[:, 1].min() + CONTACT_HEIGHT]
             contact.append(floor(low))
-            f = t[:3, :3] @ self.anatomy.feet[side].forward
-            fwd += floor(f)
+            spec = self.anatomy.feet[side]
+            fwd += floor(t[:3, :3] @ (self.figure.site_location(*spec.ball)[:3, :3].T @ spec.forward))
         return BalanceFrame(refs["left"], refs["right"], fwd, convex_hull(np.vstack(contact)))
+
+    def foot_reference(self, side: str, target: np.ndarray) -> np.ndarray:
+        """Floor reference point (mid-arch) of foot ``side`` with its ball site at pose ``target``."""
+        return floor(target[:3, :3] @ self._footprints[side][-1] + target[:3, 3])
+
+    def foot_yaw(self, side: str, target: np.ndarray) -> float:
+        """Yaw (rad) of foot ``side``'s forward with its ball site at pose ``target``."""
+        spec = self.anatomy.feet[side]
+        loc = self.figure.site_location(*spec.ball)
+        return yaw_of(target[:3, :3] @ (loc[:3, :3].T @ spec.forward))
+
+    def arm_length(self, side: str) -> float:
+        """Shoulder-to-palm-site length (m) of arm ``side`` when straight."""
+        if side not in self._arm_lengths:
+            h = self.anatomy.hands[side]
+            pts = [self.figure.site_world(*h.shoulder)[:3, 3]]
+            for jn in h.arm_joints[2:]:
+                j = self.figure.joint(jn)
+                pts.append(self.figure.site_world(j.to_seg, j.to_site)[:3, 3])
+            pts.append(self.figure.site_world(*h.palm)[:3, 3])
+            self._arm_lengths[side] = float(sum(np.linalg.norm(b - a) for a, b in zip(pts, pts[1:])))
+        return self._arm_lengths[side]
 
     def heel_point(self, side: str, target: np.ndarray) -> np.ndarray:
         """World heel point of foot ``side`` when its ball site is at pose ``target``."""

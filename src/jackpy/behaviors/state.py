@@ -36,7 +36,9 @@ class Attachment:
 class HandState:
     """A hand's goal for the arm pass: ``goal`` the palm-site pose (None: arm left alone);
     ``orient`` whether the orientation is held; ``lean`` whether an out-of-reach goal may
-    recruit the body (lean, then step); ``local`` an object whose motion carries the goal."""
+    recruit the body (lean, then step); ``local`` an object whose motion carries the goal
+    (``local_offset`` the goal in its frame); ``rules`` whether the palm-orientation rules pick the
+    orientation (set while the user translates the hand); ``region`` the last rule region."""
 
     goal: np.ndarray | None = None
     orient: bool = True
@@ -44,7 +46,9 @@ class HandState:
     local: object | None = None
     local_offset: np.ndarray | None = None
     attached: list[Attachment] = field(default_factory=list)
+    rules: bool = False
     region: str = ""
+    blending: bool = False
 
 
 @dataclass

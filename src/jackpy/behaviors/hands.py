@@ -1,0 +1,165 @@
+"""Arms and hands: hand goals, consistent palm orientation, hold, attach and release
+([SH4] §4.1.1 Table 4.5, §4.1.2, §4.2.6; behaviors.md §2.5 P4, §2.9, §2.11).
+
+Hand goals are solved in a separate arm pass after the body, moving only that arm's joints, so a
+reach does not drag the COM, pelvis or feet ([SH4] §4.1.1). A goal is the palm site's pose
+(``state.hands[side].goal``); with ``local`` set it is carried by an object (hold local: the
+doorknob model). Objects in ``attached`` are carried by the hand (grab: the screwdriver model).
+
+**Hands maintain consistent orientation** (P4): while the user translates a hand (``rules``) its
+orientation is held; when the hand passes into another region (relative to the shoulder, in the
+pelvis's facing frame) the orientation goal turns, at most ``max_turn`` per frame, to the
+Labanotation default: hanging at the side → palm in; forward or up → palms face each other; out to
+the side → palm forward; across the midline → palm backward. Fingers point along the arm.
+
+**Lean** ([proposal], for reaches beyond the arm): a hand goal with ``lean`` farther than the arm
+can reach is also added to the body pass (the spine and hips lean, balance still held), and the
+balance point is moved ``lean_rate`` per frame towards the goal, so the stepping behavior catches
+the figure with a step when the weight reaches the edge of the feet.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from jackpy.behaviors.base import BehaviorBase, param
+from jackpy.behaviors.support import floor
+from jackpy.ik.goals import Orientation, Position
+from jackpy.peabody.transforms import rotation_matrix
+
+if TYPE_CHECKING:
+    from jackpy.behaviors.loop import Frame
+
+UP = np.array([0.0, 1.0, 0.0])
+REGIONS = ("down", "forward", "side", "across")
+
+
+@dataclass
+class HandsParams:
+    orientation_rules: bool = param(True, "hands maintain consistent orientation (P4) while translated")
+    max_turn: float = param(np.radians(10.0), "largest turn of a hand's orientation goal per frame", "deg",
+                            (0.0, np.pi))
+    weight: float = param(1.0, "weight of the hand position goals", "", (0.0, 1e4))
+    orientation_weight: float = param(0.1, "weight of the hand orientation goals", "", (0.0, 1e4))
+    lean_weight: float = param(0.5, "weight of an out-of-reach hand goal on the body", "", (0.0, 1e4))
+    lean_rate: float = param(0.01, "balance-point shift per frame towards an out-of-reach goal", "cm",
+                             (0.0, 0.1))
+
+
+def turn_towards(r: np.ndarray, target: np.ndarray, max_angle: float) -> tuple[np.ndarray, float]:
+    """Rotate 3x3 ``r`` towards ``target`` by at most ``max_angle`` (rad); returns it and the angle left."""
+    d = target @ r.T
+    angle = float(np.arccos(np.clip((np.trace(d) - 1.0) / 2.0, -1.0, 1.0)))
+    if angle < 1e-9:
+        return target.copy(), 0.0
+    axis = np.array([d[2, 1] - d[1, 2], d[0, 2] - d[2, 0], d[1, 0] - d[0, 1]])
+    n = np.linalg.norm(axis)
+    if n < 1e-9:  # half turn: any axis perpendicular works
+        w, v = np.linalg.eigh(d + d.T)
+        axis, n = v[:, -1], 1.0
+    step = min(angle, max_angle)
+    return rotation_matrix(axis / n, step) @ r, angle - step
+
+
+def frame_from(fingers: np.ndarray, normal: np.ndarray, f_local: np.ndarray, n_local: np.ndarray) -> np.ndarray:
+    """3x3 rotation taking local ``f_local``/``n_local`` to world ``fingers``/``normal`` (normal
+    made perpendicular to fingers)."""
+    a = fingers / np.linalg.norm(fingers)
+    b = normal - (normal @ a) * a
+    b /= np.linalg.norm(b)
+    world = np.stack([a, b, np.cross(a, b)], axis=1)
+    local = np.stack([f_local, n_local, np.cross(f_local, n_local)], axis=1)
+    return world @ local.T
+
+
+class Hands(BehaviorBase):
+    """Hand goals for the arm passes; palm orientation rules; attachments; lean for far reaches."""
+
+    name = "hands"
+    order = 80
+
+    def __init__(self, params: HandsParams | None = None, enabled: bool = True) -> None:
+        super().__init__(params or HandsParams(), enabled)
+
+    def region(self, frame: "Frame", side: str, point: np.ndarray) -> str:
+        """P4 region of a palm position (world) for hand ``side``."""
+        a = frame.anatomy
+        pel = frame.site(a.pelvis, a.pelvis_site)
+        fwd = pel[:3, :3] @ (frame.figure.site_location(a.pelvis, a.pelvis_site)[:3, :3].T @ a.pelvis_forward)
+        fwd = fwd - (fwd @ UP) * UP
+        fwd /= np.linalg.norm(fwd)
+        left = np.cross(UP, fwd)
+        out = left if side == "left" else -left
+        if (point - pel[:3, 3]) @ out < 0.0:
+            return "across"
+        v = point - frame.site(*a.hands[side].shoulder)[:3, 3]
+        n = max(np.linalg.norm(v), 1e-9)
+        if v @ UP < -0.7 * n:
+            return "down"
+        if v @ out > v @ fwd and v @ out > 0.0:
+            return "side"
+        return "forward"
+
+    def canonical(self, frame: "Frame", side: str, point: np.ndarray, region: str) -> np.ndarray:
+        """Palm-site world rotation of the Labanotation default for ``region``."""
+        a = frame.anatomy
+        h = a.hands[side]
+        pel = frame.site(a.pelvis, a.pelvis_site)
+        fwd = pel[:3, :3] @ (frame.figure.site_location(a.pelvis, a.pelvis_site)[:3, :3].T @ a.pelvis_forward)
+        fwd = fwd - (fwd @ UP) * UP
+        fwd /= np.linalg.norm(fwd)
+        left = np.cross(UP, fwd)
+        out = left if side == "left" else -left
+        normal = {"down": -out, "forward": -out, "side": fwd, "across": -fwd}[region]
+        arm = point - frame.site(*h.shoulder)[:3, 3]
+        if abs(arm @ normal) > 0.95 * np.linalg.norm(arm):
+            arm = arm + 0.3 * np.linalg.norm(arm) * (UP if region != "down" else -UP)
+        loc = frame.figure.site_location(*h.palm)[:3, :3]
+        return frame_from(arm, normal, loc.T @ h.fingers, loc.T @ h.normal)
+
+    def update(self, frame: "Frame") -> None:
+        st, a, p = frame.state, frame.anatomy, self.params
+        for side, hs in st.hands.items():
+            if hs.local is not None:
+                hs.goal = hs.local.pose @ hs.local_offset
+            if hs.goal is None:
+                continue
+            h = a.hands[side]
+            palm = f"{h.palm[0]}.{h.palm[1]}"
+            if p.orientation_rules and hs.rules:
+                reg = self.region(frame, side, hs.goal[:3, 3])
+                if reg != hs.region:
+                    hs.region, hs.blending = reg, bool(hs.region)
+                if hs.blending:
+                    target = self.canonical(frame, side, hs.goal[:3, 3], reg)
+                    hs.goal[:3, :3], left = turn_towards(hs.goal[:3, :3], target, p.max_turn)
+                    hs.blending = left > 0.0
+            frame.arms[side].append((Position(palm, hs.goal, weight=p.weight, name=f"hand {side}"), 0))
+            if hs.orient:
+                frame.arms[side].append((Orientation(palm, hs.goal[:3, :3], weight=p.orientation_weight,
+                                                     name=f"hand frame {side}"), 0))
+            if hs.lean and self._beyond_reach(frame, side, hs.goal[:3, 3]):
+                frame.body.append((Position(palm, hs.goal, weight=p.lean_weight, name=f"lean {side}"), 1))
+
+    def _beyond_reach(self, frame: "Frame", side: str, point: np.ndarray) -> bool:
+        shoulder = frame.site(*frame.anatomy.hands[side].shoulder)[:3, 3]
+        return bool(np.linalg.norm(point - shoulder) > 0.97 * frame.loop.arm_length(side))
+
+    def finish(self, frame: "Frame") -> None:
+        st, a, p = frame.state, frame.anatomy, self.params
+        for side, hs in st.hands.items():
+            palm = frame.site(*a.hands[side].palm)
+            for att in hs.attached:
+                att.obj.pose = palm @ att.offset
+            if hs.goal is None or not hs.lean or st.com_drag is not None:
+                continue
+            miss = hs.goal[:3, 3] - palm[:3, 3]
+            if np.linalg.norm(miss) > 0.01 and self._beyond_reach(frame, side, hs.goal[:3, 3]):
+                d = floor(miss)
+                if np.linalg.norm(d) > 1e-6:
+                    b = st.balance_point + p.lean_rate * d / np.linalg.norm(d)
+                    st.balance = frame.balance_frame().params(b)
+                    st.balance_point = b
