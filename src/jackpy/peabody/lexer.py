@@ -20,6 +20,7 @@ _NUMBER = re.compile(r"(?:[0-9]+(?:\.[0-9]*)?|\.[0-9]+)(?:[eE][+-]?[0-9]+)?")
 _IDENT = re.compile(r"[A-Za-z_][A-Za-z0-9_]*")
 _PUNCT2 = ("->", "<=", ">=")
 _PUNCT1 = "{}();,=*.+-"
+_DIGITS = frozenset("0123456789")
 
 
 @dataclass(frozen=True)
@@ -75,7 +76,7 @@ def tokenize(text: str, filename: str = "<string>") -> list[Token]:
                     j += 1
             tokens.append(Token(STRING, text[i:j + 1], line, col, "".join(chars)))
             i = j + 1
-        elif c.isdigit() or (c == "." and i + 1 < n and text[i + 1].isdigit()):
+        elif c in _DIGITS or (c == "." and i + 1 < n and text[i + 1] in _DIGITS):
             m = _NUMBER.match(text, i)
             assert m is not None
             value = float(m.group())

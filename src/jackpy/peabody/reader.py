@@ -90,12 +90,14 @@ class _Parser:
 
     def convert(self, v: _Value, units: dict[str, float], what: str) -> float:
         """A value in the file's default unit of ``units`` (cm or deg); a wrong unit is an error."""
-        value, unit, _ = v
-        if unit is None:
-            return value
-        if unit.text not in units:
-            raise self.fig_error(unit, f"{what}: expected a unit among {', '.join(units)}, found {unit.text!r}")
-        return value * units[unit.text]
+        value, unit, start = v
+        if unit is not None:
+            if unit.text not in units:
+                raise self.fig_error(unit, f"{what}: expected a unit among {', '.join(units)}, found {unit.text!r}")
+            value *= units[unit.text]
+        if not math.isfinite(value * CM):
+            raise ParseError(f"{what}: value out of range", self.file, start.line, start.column)
+        return value
 
     def value_list(self) -> list[_Value]:
         """``"(" quantity {"," quantity} ")" [unit]``; a trailing unit applies to bare numbers."""
