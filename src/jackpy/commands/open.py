@@ -8,6 +8,8 @@ import argparse
 def register(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("open", help="open the workbench window (on SCENE, or the default scene)")
     p.add_argument("scene", nargs="?", default=None, help="scene file (.env or .fig) to open")
+    p.add_argument("--frames", type=int, default=None, metavar="N",
+                   help="draw N frames and exit (a smoke test of the window)")
     p.set_defaults(func=run)
 
 
@@ -27,7 +29,12 @@ def run(args: argparse.Namespace) -> int:
             session.open_session(app, Path(args.scene))
         else:
             window.ui.recovery_offer = str(p) if (p := session.pending_recovery()) else None
-        window.run(autosave=lambda: session.autosave(app))
+        frames = getattr(args, "frames", None)
+        if frames is None:
+            window.run(autosave=lambda: session.autosave(app))
+        else:
+            for _ in range(frames):
+                window.frame()
     finally:
         window.close()
     session.discard_recovery(session.recovery_path())

@@ -12,11 +12,13 @@ renderer reports them back from its id buffer and :meth:`SceneView.pick_target` 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from collections.abc import Sequence
 from typing import TYPE_CHECKING, Protocol
 
 import numpy as np
 
 from jackpy.peabody import Environment, Figure, Segment
+from jackpy.scene.cad import CADObject
 from jackpy.ui.render import DrawItem, GoalMarker, Lines, Scene, Spheres, Sticks, Triad
 from jackpy.ui.render.mesh import Mesh as RenderMesh
 
@@ -75,9 +77,13 @@ class Overlay:
     lines: list[Lines] = field(default_factory=list)
 
 
-def segment_mesh(segment: Segment) -> RenderMesh:
-    """The segment's mesh in its base frame: the posed psurf, or a box around its sites (m)."""
-    posed = segment.psurf.posed_mesh() if segment.psurf is not None else None
+def segment_mesh(segment: Segment, figure: Figure | None = None) -> RenderMesh:
+    """The segment's mesh in its base frame: a CAD object's display copy, the posed psurf, or a
+    box around its sites (m)."""
+    if isinstance(figure, CADObject):
+        posed = figure.display_mesh()
+    else:
+        posed = segment.psurf.posed_mesh() if segment.psurf is not None else None
     if posed is not None and len(posed.faces):
         return RenderMesh.from_triangles(posed.vertices, posed.faces)
     return _site_box(segment)
@@ -146,11 +152,11 @@ class SceneView:
                 gkey = _geometry_key(seg)
                 if self._geometry.get(key) == gkey and renderer.has_mesh(key):
                     continue
-                renderer.add_mesh(key, segment_mesh(seg), replace=True)
+                renderer.add_mesh(key, segment_mesh(seg, fig), replace=True)
                 self._geometry[key] = gkey
 
     # ------------------------------------------------------------------ scene
-    def build(self, env: Environment, goals: list[GoalView] = (), skeleton: bool = False,
+    def build(self, env: Environment, goals: Sequence[GoalView] = (), skeleton: bool = False,
               highlight: SegmentPick | GoalPick | None = None, overlay: Overlay | None = None,
               show_floor: bool = True) -> Scene:
         """The frame's scene: every figure posed by forward kinematics, goal markers, overlays."""

@@ -61,16 +61,22 @@ def _set(goal: object, name: str, value: object) -> None:
     setattr(goal, name, value)
 
 
+_add = {"site": 0, "kind": 0}
+"""The add row's chosen site and kind indices."""
+
+
 def _add_row(app: "App") -> None:
     sel = app.selection
     fig = app.env.figures.get(sel.figure) if isinstance(sel, SegmentPick) else None
     if fig is None or is_object(fig):
         imgui.text_disabled("Select a segment to add a goal on its site.")
         return
-    seg = fig.segments[sel.segment]
-    for site in seg.sites:
-        for kind in ("position", "position+orientation"):
-            label = f"+ {kind} on {seg.name}.{site}"
-            if imgui.small_button(label):
-                app.command(f"add goal {fig.name}:{seg.name}.{site}",
-                            lambda s=f"{seg.name}.{site}", k=kind: app.add_goal(fig, s, k))
+    sites = [f"{sel.segment}.{s}" for s in fig.segments[sel.segment].sites]
+    _add["site"] = min(_add["site"], len(sites) - 1)
+    imgui.set_next_item_width(150)
+    _add["site"] = imgui.combo("site", _add["site"], sites)[1]
+    imgui.set_next_item_width(150)
+    _add["kind"] = imgui.combo("kind", _add["kind"], KINDS)[1]
+    if imgui.button("Add goal") and sites:
+        site, kind = sites[_add["site"]], KINDS[_add["kind"]]
+        app.command(f"add goal {fig.name}:{site}", lambda: app.add_goal(fig, site, kind))
