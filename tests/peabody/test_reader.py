@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 from jackpy.errors import FigureError, ParseError
+from jackpy.peabody.model import Figure
 from jackpy.peabody.reader import load, parse_environment, parse_figures, read_environment, read_figures
 from jackpy.peabody.transforms import rotation, translation
 
@@ -16,7 +17,7 @@ FIGURES = Path(__file__).resolve().parents[2] / "figures"
 SPEC = Path("/work/shared/spec/body-model.md")
 
 
-def one(text: str) -> "object":
+def one(text: str) -> Figure:
     return parse_figures(text, "t.fig")[0]
 
 

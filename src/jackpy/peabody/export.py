@@ -50,7 +50,7 @@ def rgba(attribute: str | None) -> tuple[int, int, int, int]:
     return DEFAULT_RGBA
 
 
-def posed_scene(item: Environment | Figure) -> "trimesh.Scene":
+def posed_scene(item: Environment | Figure) -> trimesh.Scene:
     """A trimesh scene of the posed geometry: one mesh per segment named ``figure.segment``,
     vertices in world metres, faces coloured by the segment's attribute."""
     import trimesh

@@ -25,10 +25,16 @@ from jackpy.errors import FigureError, ParseError
 from jackpy.peabody.geometry import Mesh, Psurf
 from jackpy.peabody.groups import JointGroup, LinearDriver
 from jackpy.peabody.lexer import EOF, IDENT, NUMBER, STRING, Token, TokenStream, tokenize
-from jackpy.peabody.model import (DEFAULT_ROTATION_LIMITS, DEFAULT_TRANSLATION_LIMITS, Dof, Environment,
-                                  Figure, Joint, Segment)
-from jackpy.peabody.notation import (ANGLE_UNITS, CM, DEG, LENGTH_UNITS, PRIM_ARGS, RIGID_PRIMS, Prim,
-                                     compose)
+from jackpy.peabody.model import (
+    DEFAULT_ROTATION_LIMITS,
+    DEFAULT_TRANSLATION_LIMITS,
+    Dof,
+    Environment,
+    Figure,
+    Joint,
+    Segment,
+)
+from jackpy.peabody.notation import ANGLE_UNITS, CM, DEG, LENGTH_UNITS, PRIM_ARGS, RIGID_PRIMS, Prim, compose
 from jackpy.peabody.psurf_io import load_mesh
 from jackpy.peabody.transforms import AXES, is_rigid
 
@@ -52,7 +58,7 @@ class _GroupSpec:
     angles: list[Token] = field(default_factory=list)
     driver: tuple[Token, list[list[float]]] | None = None
     values: dict[str, tuple[Token, list[_Value]]] = field(default_factory=dict)
-    limits: list[tuple[Token, list[tuple[float, Token]], float]] = field(default_factory=list)
+    limits: list[tuple[list[tuple[float, Token]], float]] = field(default_factory=list)
 
 
 class _Parser:
@@ -329,7 +335,7 @@ class _Parser:
                 raise self.fig_error(tok, f"group {spec.name.text!r}: {tok.text} given twice")
             seen.add(tok.text)
             if tok.text == "limit":
-                spec.limits.append(self.linear_limit(tok))
+                spec.limits.append(self.linear_limit())
                 continue
             self.ts.expect("=")
             if tok.text in ("joints", "angles"):
@@ -347,7 +353,7 @@ class _Parser:
             self.end()
         return spec
 
-    def linear_limit(self, tok: Token) -> tuple[Token, list[tuple[float, Token]], float]:
+    def linear_limit(self) -> tuple[list[tuple[float, Token]], float]:
         """``term {("+"|"-") term} ("<=" | ">=") number ";"`` with ``term := [number "*"] IDENT``."""
         terms = []
         sign = -1.0 if self.ts.accept("-") else 1.0
@@ -370,7 +376,7 @@ class _Parser:
             flip = 1.0
         b = self.convert(self.quantity(), ANGLE_UNITS, "limit bound")
         self.end()
-        return tok, [(flip * c, t) for c, t in terms], flip * b
+        return [(flip * c, t) for c, t in terms], flip * b
 
     # ----- building ---------------------------------------------------------------------------
     def joint_values(self, where: str, tok: Token, values: list[_Value], kinds: list[str]) -> np.ndarray:
@@ -433,7 +439,7 @@ class _Parser:
         lower = angle_values.get("lower", np.full(n, DEFAULT_ROTATION_LIMITS[0]))
         upper = angle_values.get("upper", np.full(n, DEFAULT_ROTATION_LIMITS[1]))
         a_rows, b = [], []
-        for ltok, terms, bound in spec.limits:
+        for terms, bound in spec.limits:
             row = np.zeros(n)
             for coef, t in terms:
                 if t.text not in angle_names:

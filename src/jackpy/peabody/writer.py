@@ -20,8 +20,14 @@ import numpy as np
 from jackpy.atomic import atomic_write_text
 from jackpy.errors import FigureError
 from jackpy.peabody.groups import LinearDriver
-from jackpy.peabody.model import (DEFAULT_ROTATION_LIMITS, DEFAULT_TRANSLATION_LIMITS, Environment, Figure,
-                                  Joint, Segment)
+from jackpy.peabody.model import (
+    DEFAULT_ROTATION_LIMITS,
+    DEFAULT_TRANSLATION_LIMITS,
+    Environment,
+    Figure,
+    Joint,
+    Segment,
+)
 from jackpy.peabody.notation import CM, DEG, compose, decompose, fmt, prims_text
 
 _IDENT = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
