@@ -1,0 +1,81 @@
+"""The shoulder complex (book §2.4): clavicle and shoulder joints driven by elevation, abduction, twist.
+
+Group angles (radians): **elevation** ϕ (0 = arm hanging, π = straight up), **abduction** θ (0 = the arm
+in the body's lateral plane, +π/2 = forward) and **twist** τ (about the arm; positive = internal
+rotation, 0 = the default twist τ₀). The allocation to the clavicle (Otani, eqs 2.2-2.7, in degrees):
+
+    ϕ_c = cos θ · β₁ + (1 - cos θ) · β₂ - 90,   θ_c = 0.2 θ,   ϕ_s = ϕ - ϕ_c,   θ_s = θ - θ_c
+    β₁ = 0.2514 ϕ + 91.076 (ϕ ≤ 131.4) else -0.035 ϕ + 128.7
+    β₂ = 0.21066 ϕ + 92.348 (ϕ ≤ 130) else 120
+
+Joints, in the book's shoulder frame (x forward, y to the figure's right, z down; for the left arm that
+is world x_b = +z, y_b = -x, z_b = -y; the right arm mirrors the axes):
+
+* clavicle ``R(x_b) * R(z_b)`` with displacement ``(ϕ_c, θ_c)`` (D = R_z(θ_c) R_x(ϕ_c): the clavicle
+  elevates, then swings forward about the thorax vertical). **[proposal]**: the book's form 2.18 is in a
+  clavicle site frame it only shows in a figure; this order makes the arm direction exactly (ϕ, θ).
+* shoulder ``R(z_b) * R(x_b) * R(z_b) * R(x_b)`` (2.21) with displacement
+  ``(τ + (ϕ/90 - 1) θ_s, ϕ, θ_s, -ϕ_c)`` (2.23): τ₀ = (ϕ/90) θ_s removes the twist that abduction brings.
+  A joint has at most 3 DOFs here, so 2.21 is the chain ``<side>_shoulder_tilt`` (``R(x_b)``, -ϕ_c, acting
+  first) to the zero-mass ``<side>_shoulder_frame`` then ``<side>_shoulder`` (``R(z_b) * R(x_b) * R(z_b)``).
+  The driver's output order is clavicle (ϕ_c, θ_c), tilt (-ϕ_c), shoulder (τ + (ϕ/90 - 1) θ_s, ϕ, θ_s).
+
+Limits are globographic **[proposal from AAOS ranges]**: 0 ≤ ϕ ≤ 180°, -90° ≤ θ ≤ 135°, twist -90°
+(external) to 70° (internal), and two linear cuts ``A @ (ϕ, θ, τ) <= b``: behind the body elevation
+falls to 60° at θ = -90° (ϕ - 4/3 θ ≤ 180°), across the body to 150° at θ = 135° (ϕ + 2/3 θ ≤ 240°).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from jackpy.peabody.groups import JointGroup
+
+#: group angle names and box limits (radians)
+SHOULDER_ANGLES = ("elevation", "abduction", "twist")
+SHOULDER_LOWER = np.radians([0.0, -90.0, -90.0])
+SHOULDER_UPPER = np.radians([180.0, 135.0, 70.0])
+SHOULDER_A = np.array([[1.0, -4.0 / 3.0, 0.0], [1.0, 2.0 / 3.0, 0.0]])
+SHOULDER_B = np.radians([180.0, 240.0])
+
+
+def allocate(phi_deg: float, theta_deg: float) -> tuple[float, float, float, float]:
+    """Otani's allocation (degrees): ``(ϕ_c, θ_c, ϕ_s, θ_s)`` for total elevation and abduction."""
+    b1 = 0.2514 * phi_deg + 91.076 if phi_deg <= 131.4 else -0.035 * phi_deg + 128.7
+    b2 = 0.21066 * phi_deg + 92.348 if phi_deg <= 130.0 else 120.0
+    c = np.cos(np.radians(theta_deg))
+    phi_c = c * b1 + (1.0 - c) * b2 - 90.0
+    theta_c = 0.2 * theta_deg
+    return float(phi_c), float(theta_c), float(phi_deg - phi_c), float(theta_deg - theta_c)
+
+
+def default_twist(phi_deg: float, theta_s_deg: float) -> float:
+    """τ₀ = (ϕ/90) θ_s, degrees (eq. 2.17 applied to the shoulder's share, as in 2.23)."""
+    return phi_deg / 90.0 * theta_s_deg
+
+
+class ShoulderDriver:
+    """Group driver: (ϕ, θ, τ) radians -> clavicle (ϕ_c, θ_c) + shoulder (4 angles), radians."""
+
+    def __call__(self, theta: np.ndarray) -> np.ndarray:
+        phi, th, tau = np.degrees(np.asarray(theta, dtype=float))
+        phi_c, theta_c, _, theta_s = allocate(phi, th)
+        first = tau + default_twist(phi, theta_s) - theta_s
+        return np.radians([phi_c, theta_c, -phi_c, first, phi, theta_s])
+
+    def jacobian(self, theta: np.ndarray, h: float = 1e-7) -> np.ndarray:
+        theta = np.asarray(theta, dtype=float)
+        cols = []
+        for k in range(3):
+            e = np.zeros(3)
+            e[k] = h
+            cols.append((self(theta + e) - self(theta - e)) / (2 * h))
+        return np.stack(cols, axis=1)
+
+
+def shoulder_group(side: str) -> JointGroup:
+    """The ``<side>_shoulder_complex`` group over the clavicle, shoulder-tilt and shoulder joints."""
+    return JointGroup(f"{side}_shoulder_complex",
+                      [f"{side}_clavicle", f"{side}_shoulder_tilt", f"{side}_shoulder"],
+                      list(SHOULDER_ANGLES), ShoulderDriver(), SHOULDER_LOWER, SHOULDER_UPPER,
+                      SHOULDER_A, SHOULDER_B)
