@@ -121,3 +121,59 @@ def synthetic_anatomy(figure: Figure) -> Anatomy:
         neck_joints=["neck", "head"], eyes={s: (f"eye_{s}", "base") for s in SIDES},
         eye_joints={s: f"eye_{s}" for s in SIDES}, eye_forward=Z.copy(), feet=feet, hands=hands,
         springs=springs, leg_length=0.94, spine_joints=[f"spine{k + 1}" for k in range(17)])
+
+
+def human_anatomy(figure: Figure) -> Anatomy:
+    """Anatomy of :func:`jackpy.body.make_human` (standing in its neutral posture when called:
+    local axes are read from that posture, facing from the feet's heel-to-ball direction)."""
+    w = figure.world_transforms()
+
+    def local(seg: str, v: np.ndarray) -> np.ndarray:
+        u = w[seg][:3, :3].T @ v
+        return u / np.linalg.norm(u)
+
+    def at(seg: str, site: str) -> np.ndarray:
+        return figure.site_world(seg, site)[:3, 3]
+
+    up = np.array([0.0, 1.0, 0.0])
+    fwd = sum(at(f"{s}_foot", "ball") - at(f"{s}_foot", "heel") for s in SIDES)
+    fwd = fwd - (fwd @ up) * up
+    fwd /= np.linalg.norm(fwd)
+    feet, hands = {}, {}
+    for side in SIDES:
+        foot = f"{side}_foot"
+        f_fwd = at(foot, "ball") - at(foot, "heel")
+        feet[side] = FootSpec(foot, (foot, "ball"), (foot, "heel"), (foot, "toe"), 0.045,
+                              local(foot, f_fwd - (f_fwd @ up) * up), local(foot, up),
+                              [f"{side}_hip", f"{side}_knee", f"{side}_ankle", f"{side}_toes"])
+        palm = f"{side}_palm"
+        fingers = at(palm, "middle_mcp") - at(palm, "base")
+        thumb = at(palm, "thumb_cmc") - at(palm, "palm_centre")
+        digits = [Digit("thumb", [(f"{side}_thumb_cmc", 0, 1.0), (f"{side}_thumb_mcp", 0, 1.0),
+                                  (f"{side}_thumb_ip", 0, 1.0)], [f"{side}_thumb_{k}" for k in (1, 2, 3)])]
+        for name in ("index", "middle", "ring", "little"):
+            digits.append(Digit(name, [(f"{side}_{name}_mcp", 1, 1.0), (f"{side}_{name}_pip", 0, 1.0),
+                                       (f"{side}_{name}_dip", 0, 1.0)], [f"{side}_{name}_{k}" for k in (1, 2, 3)]))
+        # the palm faces where the index tip goes when it flexes
+        q0 = figure.q.copy()
+        tip0 = at(f"{side}_index_3", "tip")
+        figure.joint(f"{side}_index_mcp").displacement[1] += 0.1
+        normal = at(f"{side}_index_3", "tip") - tip0
+        figure.q = q0
+        f_l = local(palm, fingers)
+        n_l = local(palm, normal)
+        n_l = n_l - (n_l @ f_l) * f_l
+        hands[side] = HandSpec((palm, "palm_centre"), n_l / np.linalg.norm(n_l), f_l, local(palm, thumb),
+                               [f"{side}_clavicle", f"{side}_shoulder_tilt", f"{side}_shoulder", f"{side}_elbow",
+                                f"{side}_forearm_twist_1", f"{side}_forearm_twist_2", f"{side}_wrist"],
+                               digits, (f"{side}_upper_arm", "base"))
+    springs = [(f"{s}_knee", 0, 0.0, 1.0) for s in SIDES] + [(f"{s}_elbow", 0, 0.0, 1.0) for s in SIDES]
+    hip = figure.site_world("pelvis", "left_hip")[:3, 3]
+    spine = figure.groups["spine"]
+    return Anatomy(
+        pelvis="pelvis", pelvis_site="centre", pelvis_forward=local("pelvis", fwd), pelvis_up=local("pelvis", up),
+        chest=("t1", "base"), chest_up=local("t1", up), view=("head", "view"), view_forward=local("head", fwd),
+        neck_joints=["c7_t1", "atlanto_occipital"], eyes={s: (f"{s}_eye", "base") for s in SIDES},
+        eye_joints={s: f"{s}_eye" for s in SIDES}, eye_forward=local("left_eye", fwd), feet=feet, hands=hands,
+        springs=springs, leg_length=float(hip[1] - at("left_foot", "heel")[1]), spine_group="spine",
+        spine_joints=list(spine.joints))
