@@ -118,3 +118,42 @@ def rescale_in_place(figure: Figure, sex: str, percentile: float, population: st
         g.angles = angles[n]
     figure.body_spec = spec  # type: ignore[attr-defined]
     place_on_floor(figure, floor)
+
+
+def peabody_copy(figure: Figure, psurf_dir: str = "") -> Figure:
+    """A figure sharing ``figure``'s segments and joints for writing as Peabody text: psurf names are
+    prefixed with ``psurf_dir`` and only linear joint groups are kept (the spine and shoulder drivers
+    have no Peabody form; their member displacements are written, and :func:`attach_groups` restores
+    the groups after reading)."""
+    from jackpy.peabody.groups import LinearDriver
+    from jackpy.peabody.model import Segment
+
+    out = Figure(figure.name)
+    for seg in figure.segments.values():
+        ps = seg.psurf
+        if ps is not None:
+            ps = Psurf(f"{psurf_dir}/{seg.name}.pss" if psurf_dir else f"{seg.name}.pss", ps.transform, ps.mesh)
+        out.segments[seg.name] = Segment(seg.name, ps, seg.attribute, seg.sites, seg.mass, seg.com, seg.inertia)
+    out.joints = dict(figure.joints)
+    out.groups = {n: g for n, g in figure.groups.items() if isinstance(g.driver, LinearDriver)}
+    out.root, out.location = figure.root, figure.location.copy()
+    return out
+
+
+def attach_groups(figure: Figure) -> None:
+    """Add the spine and shoulder-complex groups to a standard human read from a Peabody file, with
+    group angles recovered exactly from the member displacements the drivers produced."""
+    from jackpy.body.shoulder import shoulder_group
+    from jackpy.body.spine import SPINE_ANGLES, SPINE_DOFS, spine_group
+
+    g = spine_group()
+    member = np.concatenate([figure.joint(j).displacement for j in g.joints]).reshape(-1, 3)
+    g.angles = np.array([member[:, SPINE_DOFS.index(a)].sum() for a in SPINE_ANGLES])
+    figure.add_group(g)
+    for side, _ in SIDES:
+        g = shoulder_group(side)
+        theta_c = np.degrees(figure.joint(f"{side}_clavicle").displacement[1])
+        first, phi, theta_s = np.degrees(figure.joint(f"{side}_shoulder").displacement)
+        tau = first - (phi / 90.0 - 1.0) * theta_s
+        g.angles = np.radians([phi, theta_c / 0.2, tau])
+        figure.add_group(g)

@@ -46,6 +46,40 @@ NEUTRAL_ARM_ELEVATION = 7.0
 CLAVICLE_RADIUS = 0.0605
 
 
+#: DOF names in type order per joint kind (the keys of joint_limits.csv and strength.csv)
+DOF_NAMES = {
+    "spine": SPINE_DOFS, "atlanto_occipital": SPINE_DOFS, "eye": ("pitch", "yaw"),
+    "clavicle": ("elevation", "protraction"), "shoulder_tilt": ("clavicle_undo",),
+    "shoulder": ("twist", "elevation", "abduction"), "elbow": ("flexion",), "forearm_twist": ("pronation",),
+    "wrist": ("deviation", "flexion"), "finger_mcp": ("spread", "flexion"), "finger_pip": ("flexion",),
+    "finger_dip": ("flexion",), "thumb_cmc": ("abduction", "flexion"), "thumb_mcp": ("flexion",),
+    "thumb_ip": ("flexion",), "hip": ("rotation", "abduction", "flexion"), "knee": ("flexion",),
+    "ankle": ("inversion", "flexion"), "toes": ("flexion",),
+}
+
+
+def joint_kind(joint: str) -> str:
+    """The kind of a human joint: ``left_index_pip`` -> ``finger_pip``, ``l4_l5`` -> ``spine``."""
+    for side in ("left_", "right_"):
+        if joint.startswith(side):
+            joint = joint[len(side):]
+    first, last = joint.split("_")[0], joint.split("_")[-1]
+    if first in FINGERS:
+        return f"finger_{last}"
+    if first == "thumb":
+        return f"thumb_{last}"
+    if joint.startswith("forearm_twist"):
+        return "forearm_twist"
+    if first[0] in "lct" and first[1:].isdigit():
+        return "spine"
+    return joint
+
+
+def dof_names_of(joint: Joint) -> tuple[str, ...]:
+    """Anatomical names of a human joint's DOFs in type order (e.g. ``("rotation", "abduction", "flexion")``)."""
+    return DOF_NAMES[joint_kind(joint.name)]
+
+
 def mirror_axis(axis: tuple[float, float, float], sx: float) -> np.ndarray:
     """A left-side DOF axis carried to the side with x sign ``sx`` (the same anatomical sense)."""
     a = np.asarray(axis, dtype=float)
@@ -184,7 +218,7 @@ def _arm(b: _Builder, spec: BodySpec, side: str, sx: float, yt: float, s_scale: 
     # R(x) by -phi_c, turns the zero-mass frame segment <side>_shoulder_frame back to the thorax's tilt
     b.segment(f"{side}_shoulder_frame", shoulder)
     b.joint(f"{side}_shoulder_tilt", f"{side}_clavicle", "shoulder", f"{side}_shoulder_frame",
-            _dofs("shoulder", [("clavicle_undo", xb)], sx))
+            _dofs("shoulder_tilt", [("clavicle_undo", xb)], sx))
     b.segment(f"{side}_upper_arm", shoulder)
     b.joint(f"{side}_shoulder", f"{side}_shoulder_frame", "shoulder", f"{side}_upper_arm",
             _dofs("shoulder", [("twist", zb), ("elevation", xb), ("abduction", zb)], sx))
