@@ -1,0 +1,50 @@
+"""The loop on the standard human: look-at accuracy and a short drag keeping balance and feet."""
+
+import numpy as np
+import pytest
+
+from jackpy.behaviors import BehaviorLoop
+from jackpy.behaviors import manipulation as m
+from jackpy.behaviors.anatomy import human_anatomy
+from jackpy.behaviors.support import floor
+
+body = pytest.importorskip("jackpy.body.human")
+
+
+@pytest.fixture(scope="module")
+def human():
+    f = body.make_human("male", 50)
+    return f, human_anatomy(f)
+
+
+def test_look_at_within_a_centimetre_per_metre(human):
+    f, a = human
+    lp = BehaviorLoop(f, a)
+    view = f.site_world(*a.view)[:3, 3]
+    fwd = f.world_transforms()[a.view[0]][:3, :3] @ a.view_forward
+    side = np.cross([0.0, 1.0, 0.0], fwd)
+    target = view + 1.0 * fwd + 0.3 * side - 0.2 * np.array([0.0, 1.0, 0.0])
+    m.move_eyes(lp, target)
+    for _ in range(10):
+        lp.step()
+    for seg, site in a.eyes.values():
+        w = f.site_world(seg, site)
+        ray = f.world_transforms()[seg][:3, :3] @ a.eye_forward
+        d = target - w[:3, 3]
+        assert np.linalg.norm(d - (d @ ray) * ray) < 0.01
+
+
+def test_hand_drag_keeps_balance_and_feet(human):
+    f, a = human
+    lp = BehaviorLoop(f, a)
+    feet0 = {s: f.site_world(*ft.ball)[:3, 3].copy() for s, ft in a.feet.items()}
+    palm = f.site_world(*a.hands["right"].palm)[:3, 3].copy()
+    for i in range(10):
+        m.move_hand(lp, "right", position=palm + np.array([0.0, 0.02 * i, 0.02 * i]))
+        lp.step()
+        bf = lp.balance_frame_for({s: ft.target for s, ft in lp.state.feet.items()})
+        assert bf.margin(floor(f.centre_of_mass())) < 0.0
+        q = f.q
+        assert np.all(q >= f.lower - 1e-9) and np.all(q <= f.upper + 1e-9)
+    for s, p in feet0.items():
+        assert np.linalg.norm(f.site_world(*a.feet[s].ball)[:3, 3] - p) < 1e-3
