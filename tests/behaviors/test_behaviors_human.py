@@ -48,3 +48,20 @@ def test_hand_drag_keeps_balance_and_feet(human):
         assert np.all(q >= f.lower - 1e-9) and np.all(q <= f.upper + 1e-9)
     for s, p in feet0.items():
         assert np.linalg.norm(f.site_world(*a.feet[s].ball)[:3, 3] - p) < 1e-3
+
+
+@pytest.mark.parametrize("grip", ["power", "precision", "disc", "small disc", "tripod"])
+def test_grasp_closes_fingers_onto_a_cylinder(human, grip):
+    from jackpy.behaviors.grasp import GraspObject
+
+    f, a = human
+    lp = BehaviorLoop(f, a)
+    palm = f.site_world(*a.hands["right"].palm)
+    pose = np.eye(4)
+    pose[:3, 3] = palm[:3, 3] + np.array([0.0, 0.2, 0.35])
+    site = np.eye(4)
+    site[:3, :3] = np.array([[0, 0, 1], [0, 1, 0], [-1, 0, 0]]).T
+    obj = GraspObject("bar", "cylinder", (0.04, 0.15, 0.0), pose, site)
+    r = m.grasp(lp, "right", obj, grip, frames=20, attach=False)
+    fingers = {k: v for k, v in r.clearance.items() if k != "thumb"}
+    assert all(-0.003 <= v <= 0.001 for v in fingers.values()), fingers
