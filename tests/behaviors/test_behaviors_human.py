@@ -54,7 +54,8 @@ def test_hand_drag_keeps_balance_and_feet(human):
 def test_grasp_closes_fingers_onto_a_cylinder(human, grip):
     from jackpy.behaviors.grasp import GraspObject
 
-    f, a = human
+    f = body.make_human("male", 50)
+    a = human_anatomy(f)
     lp = BehaviorLoop(f, a)
     palm = f.site_world(*a.hands["right"].palm)
     pose = np.eye(4)
