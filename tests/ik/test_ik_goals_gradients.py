@@ -88,7 +88,7 @@ def test_aim_gradient_corrected_cubic():
         v = rng.normal(size=3)
         v /= np.linalg.norm(v)
 
-        def P(rr):
+        def P(rr, p=p, v=v):
             u = (p - rr) / np.linalg.norm(p - rr)
             return np.sum((u - v) ** 2)
 

@@ -7,8 +7,20 @@
 Knows nothing of humans: sites, chains and joints are named by the caller.
 """
 
-from jackpy.ik.goals import (Aim, AllOf, AnyOf, CentreOfMass, Goal, HalfSpace, Line, Orientation, Plane,
-                             Position, PositionOrientation, unit_factor)
+from jackpy.ik.goals import (
+                             Aim,
+                             AllOf,
+                             AnyOf,
+                             CentreOfMass,
+                             Goal,
+                             HalfSpace,
+                             Line,
+                             Orientation,
+                             Plane,
+                             Position,
+                             PositionOrientation,
+                             unit_factor,
+)
 from jackpy.ik.problem import Problem
 from jackpy.ik.result import ACHIEVED, ITERATION_LIMIT, UNREACHABLE, GoalReport, Result
 from jackpy.ik.solver import solve

@@ -210,13 +210,13 @@ class ArmChain:
     """A 6-D goal whose chain is exactly an :class:`Arm7` in a figure."""
 
     arm: Arm7
-    goal: "Goal"
+    goal: Goal
     shoulder: str
     q_index: np.ndarray  # q index of t1..t7
     z_index: np.ndarray  # solver-variable index of t1..t7
     end: np.ndarray  # site frame in the wrist frame
 
-    def seed(self, comp: "Compiled", x_base: np.ndarray, z: np.ndarray) -> np.ndarray | None:
+    def seed(self, comp: Compiled, x_base: np.ndarray, z: np.ndarray) -> np.ndarray | None:
         """Scaled variables of the in-limit closed-form solution nearest the current posture."""
         fig = comp.figure
         j = fig.joint(self.shoulder)
@@ -231,7 +231,7 @@ class ArmChain:
         return out
 
 
-def match_arm(figure: Figure, goal: "Goal", cols: np.ndarray) -> ArmChain | None:
+def match_arm(figure: Figure, goal: Goal, cols: np.ndarray) -> ArmChain | None:
     """An :class:`ArmChain` when ``goal`` is a full-weight 6-D goal on exactly an arm7 chain, else None."""
     from jackpy.ik.goals.position_orientation import PositionOrientation
 

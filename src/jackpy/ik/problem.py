@@ -29,7 +29,7 @@ if TYPE_CHECKING:
 class Problem:
     """Goals on one figure. ``add(goal, level)``: level 0 is the highest priority (see :mod:`.priorities`)."""
 
-    def __init__(self, figure: "Figure") -> None:
+    def __init__(self, figure: Figure) -> None:
         self.figure = figure
         self._entries: list[tuple[Goal, int]] = []
         self._locked: set[str] = set()
@@ -94,7 +94,7 @@ class Problem:
         return self.figure.joint(name).ndof
 
     # ----- compiled form ------------------------------------------------------------------------
-    def compile(self) -> "Compiled":
+    def compile(self) -> Compiled:
         """The flattened form the solver uses (cached until the problem or figure topology changes)."""
         kin = self.figure.kinematics()
         if self._compiled is None or self._compiled.kin is not kin:
@@ -131,7 +131,7 @@ class Evaluation:
 class Compiled:
     """Index maps of a :class:`Problem`: variables, bounds, linear rows and goal evaluation."""
 
-    def __init__(self, problem: Problem, kin: "Kinematics") -> None:
+    def __init__(self, problem: Problem, kin: Kinematics) -> None:
         fig = problem.figure
         self.problem, self.kin, self.figure = problem, kin, fig
         self.entries = list(problem._entries)

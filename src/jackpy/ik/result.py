@@ -48,9 +48,10 @@ class Result:
         return self.status == ACHIEVED
 
     def __str__(self) -> str:
-        lines = [f"{self.status}: {self.iterations} iterations, {self.evaluations} evaluations, "
-                 f"potential {self.potential:.3g}"]
+        head = (f"{self.status}: {self.iterations} iterations, {self.evaluations} evaluations, "
+                f"potential {self.potential:.3g}")
+        lines = [head]
         for g in self.goals:
-            lines.append(f"  [{g.level}] {g.name}: {g.metres * 1e3:.3f} mm, {g.degrees:.3f} deg"
-                         f"{'' if g.achieved else '  (not achieved)'}")
+            note = "" if g.achieved else "  (not achieved)"
+            lines.append(f"  [{g.level}] {g.name}: {g.metres * 1e3:.3f} mm, {g.degrees:.3f} deg{note}")
         return "\n".join(lines)

@@ -10,7 +10,15 @@ from __future__ import annotations
 
 import numpy as np
 
-from jackpy.ik.goals.base import Chain, Context, GoalEval, SiteGoal, angle_deg, point3, unit
+from jackpy.ik.goals.base import (
+    Chain,
+    Context,
+    GoalEval,
+    SiteGoal,
+    angle_deg,
+    point3,
+    unit,
+)
 
 
 def aim_gradient_r(p: np.ndarray, r: np.ndarray, v: np.ndarray, c: float = 1.0) -> np.ndarray:

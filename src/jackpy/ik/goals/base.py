@@ -47,7 +47,7 @@ class Context:
     entry of ``cols`` (rotations in radians, translations in metres).
     """
 
-    def __init__(self, kin: "Kinematics", fk: "FKResult", cols: np.ndarray) -> None:
+    def __init__(self, kin: Kinematics, fk: FKResult, cols: np.ndarray) -> None:
         self.kin, self.fk, self.cols = kin, fk, cols
         sign = kin.dof_sign[cols].astype(float)[:, None]
         axes = fk.dof_axes[cols] * sign
@@ -96,7 +96,7 @@ class Goal:
     weight: float
     name: str
 
-    def bind(self, figure: "Figure") -> None:
+    def bind(self, figure: Figure) -> None:
         """Resolve names against ``figure`` (called when the problem is compiled)."""
         raise NotImplementedError
 
@@ -113,7 +113,7 @@ class Goal:
         f = self.evaluate(ctx).f
         return float(f @ f)
 
-    def leaves(self) -> list["Goal"]:
+    def leaves(self) -> list[Goal]:
         """The goal itself, or for combinations every goal inside it."""
         return [self]
 
@@ -132,7 +132,7 @@ class SiteGoal(Goal):
         self.location = np.eye(4)
         self._mask = np.zeros(0, dtype=bool)
 
-    def bind(self, figure: "Figure") -> None:
+    def bind(self, figure: Figure) -> None:
         seg_name, site = self.site_name.split(".", 1)
         kin = figure.kinematics()
         self.location = figure.site_location(seg_name, site)
@@ -143,7 +143,7 @@ class SiteGoal(Goal):
         return self._mask
 
 
-def chain_mask(figure: "Figure", seg: int, chain: Chain) -> np.ndarray:
+def chain_mask(figure: Figure, seg: int, chain: Chain) -> np.ndarray:
     """DOFs (mask over ``q``) of ``chain`` for an end effector on segment index ``seg``.
 
     ``None``: every DOF from the root to the segment. A joint name: the DOFs from that joint to the

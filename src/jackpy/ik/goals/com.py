@@ -36,7 +36,7 @@ class CentreOfMass(Goal):
         self.name = name or "CentreOfMass"
         self._mask = np.zeros(0, dtype=bool)
 
-    def bind(self, figure: "Figure") -> None:
+    def bind(self, figure: Figure) -> None:
         kin = figure.kinematics()
         if kin.mass.sum() <= 0:
             raise FigureError(f"figure {figure.name!r} has no mass: a centre-of-mass goal needs one")

@@ -29,7 +29,7 @@ class _Group(Goal):
         self.name = name or f"{type(self).__name__}({', '.join(g.name for g in self.goals)})"
         self._mask = np.zeros(0, dtype=bool)
 
-    def bind(self, figure: "Figure") -> None:
+    def bind(self, figure: Figure) -> None:
         for g in self.goals:
             g.bind(figure)
         self._mask = np.logical_or.reduce([g.chain_mask() for g in self.goals])

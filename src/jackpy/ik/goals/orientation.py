@@ -9,7 +9,14 @@ from __future__ import annotations
 
 import numpy as np
 
-from jackpy.ik.goals.base import Chain, Context, GoalEval, SiteGoal, angle_deg, rotation3
+from jackpy.ik.goals.base import (
+    Chain,
+    Context,
+    GoalEval,
+    SiteGoal,
+    angle_deg,
+    rotation3,
+)
 
 
 def orientation_terms(ctx: Context, seg: int, w: np.ndarray, target: np.ndarray, cx: float,
