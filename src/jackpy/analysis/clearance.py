@@ -10,8 +10,10 @@ need rtree) do not.
 Broad phase (vectorised numpy): every segment has a bounding sphere (segment frame); every object
 body has a world AABB (recomputed from its location each frame). Segment-object pairs are tested
 only when the sphere touches the AABB; segment-segment pairs only when their spheres overlap.
-Minimum clearance visits segments in increasing order of the sphere-to-AABB lower bound and stops
-once that bound exceeds the best distance found.
+Minimum clearance first measures the segment that was nearest that object in the previous query
+(frame coherence: its distance is usually already close to the answer), then visits the others in
+increasing order of the sphere-to-AABB lower bound and stops once that bound exceeds the best
+distance found.
 
 Self-collision skips adjacent segments (joined by a joint) and, with ``ignore_initial``, pairs
 already touching in the posture the checker was built in (their shapes overlap by design, e.g.
@@ -123,6 +125,7 @@ class ClearanceChecker:
         self._seg_world = np.zeros((len(self.segment_names), 4, 4))
         self._centre_world = np.zeros((len(self.segment_names), 3))
         self._placed = np.zeros(len(self.segment_names), dtype=bool)
+        self._last_nearest: dict[str, int] = {}
         self.update()
         if ignore_initial and len(self._pairs):
             touching = {tuple(p) for p in self._colliding_pairs()}
@@ -198,10 +201,23 @@ class ClearanceChecker:
                               f"{', '.join(self.body_names) or 'none'}; segments with geometry: "
                               f"{len(self.segment_names)})")
         gap = self._sphere_box_gap(bodies)
+        creq = fcl.CollisionRequest(num_max_contacts=1, enable_contact=True)
+        for s, bi in np.argwhere(gap <= 0.0):  # touching: distance 0 at a contact (collide is cheap)
+            res = fcl.CollisionResult()
+            if fcl.collide(self._place(s), self._body_obj[bodies[bi]], creq, res):
+                p = np.array(res.contacts[0].pos, dtype=float) if res.contacts else self._centre_world[s]
+                return Clearance(0.0, self.segment_names[s], self.body_names[bodies[bi]], p, p.copy())
         order = np.argsort(gap, axis=None)
+        if obj in self._last_nearest:
+            order = np.r_[self._last_nearest[obj], order]
         best: Clearance | None = None
+        best_flat = -1
         req = fcl.DistanceRequest(enable_nearest_points=True)
+        visited = set()
         for flat in order:
+            if flat in visited:
+                continue
+            visited.add(flat)
             s, bi = np.unravel_index(flat, gap.shape)
             if best is not None and gap[s, bi] >= best.distance:
                 break
@@ -211,7 +227,7 @@ class ClearanceChecker:
             if best is None or d < best.distance:
                 p1, p2 = (np.array(p, dtype=float) for p in res.nearest_points)
                 best = Clearance(d, self.segment_names[s], self.body_names[b], p1, p2)
-                if d == 0.0:
-                    break
+                best_flat = int(flat)
         assert best is not None
+        self._last_nearest[obj] = best_flat
         return best

@@ -149,3 +149,9 @@ def torque_vertex_colours(figure: Figure, joint_util: Mapping[str, float], sprea
             u = np.maximum(u, val * fade)
         out[name] = strength_colour(u)
     return out
+
+
+def dof_strengths(pairs: Mapping[str, tuple[float, float]]) -> dict[str, DofStrength]:
+    """A strength table from ``{dof: (toward_lower_Nm, toward_upper_Nm)}`` pairs, the form of
+    :func:`jackpy.body.strength.strength_table`."""
+    return {name: DofStrength(positive=float(up), negative=float(lo)) for name, (lo, up) in pairs.items()}
