@@ -26,6 +26,8 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from jackpy.body.anthropometry import AnthropometryError, Population, check_percentile, check_sex, load_population
+from jackpy.peabody.geometry import Mesh, Psurf
+from jackpy.peabody.model import Figure
 
 #: the stature path from the floor up (book: foot, lower leg, upper leg, lower/centre/upper torso, neck, head)
 STATURE_PATH = ("foot.height", "shank.length", "thigh.length", "pelvis.length", "spine.length",
@@ -191,3 +193,35 @@ def apply_overrides(spec: BodySpec, overrides: dict[str, float] | None, rule: st
     for name in order:
         spec = set_dimension(spec, name, float(overrides[name]), rule)
     return spec
+
+
+def uneven_scale(points: np.ndarray, axis: np.ndarray, r0: np.ndarray, r1: np.ndarray,
+                 s0: np.ndarray, s1: np.ndarray) -> np.ndarray:
+    """Uneven scaling along a segment (quarterly report §9): each point ``x`` (n,3, segment frame) is
+    scaled about the segment origin by ``s(x) = (1 - t) s0 + t s1``, ``t = ((x - r0).a) / ((r1 - r0).a)``
+    clamped to [0, 1], so points beyond the reference positions keep the end scales. ``s0 == s1`` is
+    Jack's uniform per-axis scaling."""
+    x = np.asarray(points, dtype=float).reshape(-1, 3)
+    a = np.asarray(axis, dtype=float) / np.linalg.norm(axis)
+    r0, r1 = np.asarray(r0, dtype=float), np.asarray(r1, dtype=float)
+    span = float(np.dot(r1 - r0, a))
+    if abs(span) < 1e-12:
+        raise ScalingError("uneven scaling: the two reference positions coincide along the axis")
+    t = np.clip((x - r0) @ a / span, 0.0, 1.0)[:, None]
+    return x * ((1.0 - t) * np.asarray(s0, dtype=float) + t * np.asarray(s1, dtype=float))
+
+
+def scale_segment_unevenly(figure: Figure, segment: str, axis: np.ndarray, site0: str, site1: str,
+                           s0: np.ndarray, s1: np.ndarray) -> None:
+    """Apply :func:`uneven_scale` to a segment's surface and sites, between two of its sites (their
+    positions are the reference positions); attached segments follow their (moved) joint sites."""
+    seg = figure.segment(segment)
+    r0, r1 = seg.site(site0).location[:3, 3].copy(), seg.site(site1).location[:3, 3].copy()
+    if seg.psurf is not None and seg.psurf.mesh is not None:
+        posed = seg.psurf.posed_mesh()
+        seg.psurf = Psurf(seg.psurf.source, np.eye(4),
+                          Mesh(uneven_scale(posed.vertices, axis, r0, r1, s0, s1), posed.faces))
+    for site in seg.sites.values():
+        site.location = site.location.copy()
+        site.location[:3, 3] = uneven_scale(site.location[:3, 3], axis, r0, r1, s0, s1)[0]
+    figure.topology_changed()

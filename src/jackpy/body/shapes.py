@@ -35,13 +35,18 @@ def superellipse_ring(centre: np.ndarray, u: np.ndarray, v: np.ndarray, ru: floa
 
 
 def tube(rings: np.ndarray, start: np.ndarray | None = None, end: np.ndarray | None = None) -> Mesh:
-    """Closed mesh from rings (m, n, 3): quads between rings, fans to ``start``/``end`` (or ring centroids).
+    """Closed mesh from rings (m, n, 3): quads between rings, fans to ``start``/``end`` (default: flat caps).
 
     Faces are oriented outward (counter-clockwise seen from outside).
     """
+    if start is None:  # flat cap: a ring inset by 0.5 % keeps the cap out of the side normals
+        start = rings[0].mean(axis=0)
+        rings = np.concatenate([(start + 0.995 * (rings[0] - start))[None], rings])
+    if end is None:
+        end = rings[-1].mean(axis=0)
+        rings = np.concatenate([rings, (end + 0.995 * (rings[-1] - end))[None]])
     m, n, _ = rings.shape
-    start = rings[0].mean(axis=0) if start is None else np.asarray(start, dtype=float)
-    end = rings[-1].mean(axis=0) if end is None else np.asarray(end, dtype=float)
+    start, end = np.asarray(start, dtype=float), np.asarray(end, dtype=float)
     verts = np.vstack([rings.reshape(-1, 3), start, end])
     i = np.arange(n)
     j = (i + 1) % n
@@ -118,8 +123,8 @@ def limb(p0: np.ndarray, p1: np.ndarray, stations: list[tuple[float, float, floa
         du, dv = np.interp(tt, off[:, 0], off[:, 1]), np.interp(tt, off[:, 0], off[:, 2])
     rings = np.stack([superellipse_ring(p0 + s * d + a * u + b * v, u, v, ru_, rv_, n, exponent)
                       for s, ru_, rv_, a, b in zip(s_arr, rings_u, rings_v, du, dv)])
-    start = p0 + (s_arr[0] - (cap0 * 0.5 * (ru[0] + rv[0]) * 0.13 if cap0 > 0 else 0.0)) * d + du[0] * u + dv[0] * v
-    end = p0 + (s_arr[-1] + (cap1 * 0.5 * (ru[-1] + rv[-1]) * 0.13 if cap1 > 0 else 0.0)) * d + du[-1] * u + dv[-1] * v
+    start = p0 + (s_arr[0] - cap0 * 0.13 * 0.5 * (ru[0] + rv[0])) * d + du[0] * u + dv[0] * v if cap0 > 0 else None
+    end = p0 + (s_arr[-1] + cap1 * 0.13 * 0.5 * (ru[-1] + rv[-1])) * d + du[-1] * u + dv[-1] * v if cap1 > 0 else None
     return tube(rings, start, end)
 
 
@@ -152,8 +157,8 @@ def _torso_slab(prof: dict[str, np.ndarray], y0: float, y1: float, cap0: bool, c
     ex, ez = np.array([1.0, 0.0, 0.0]), np.array([0.0, 0.0, 1.0])
     rings = [superellipse_ring(np.array([0.0, y, c]), ex, ez, a, b, AROUND_TORSO, 2.3)
              for y, a, b, c in zip(ys, rx, rz, cz)]
-    start = np.array([0.0, ys[0] - (0.6 * rz[0] if cap0 else 0.0), cz[0]])
-    end = np.array([0.0, ys[-1] + (0.25 * rz[-1] if cap1 else 0.0), cz[-1]])
+    start = np.array([0.0, ys[0] - 0.6 * rz[0], cz[0]]) if cap0 else None
+    end = np.array([0.0, ys[-1] + 0.25 * rz[-1], cz[-1]]) if cap1 else None
     if cap0:  # rounded crotch / seat
         for f in (0.95, 0.8, 0.55):
             rings.insert(0, superellipse_ring(np.array([0.0, ys[0] - 0.6 * rz[0] * np.sqrt(1 - f * f), cz[0]]),
@@ -215,14 +220,14 @@ def body_shapes(spec: BodySpec, sk: Skeleton) -> dict[str, tuple[Mesh, str]]:
     def put(seg: str, mesh: Mesh, region: str) -> None:
         out[seg] = (Mesh(mesh.vertices - org[seg], mesh.faces), ATTRIBUTES[region])
 
-    # torso slabs, one per vertebra, overlapping 6 mm so bending leaves no slits
+    # torso slabs, one per vertebra, meeting at the joint heights (overlapping coincident surfaces
+    # would z-fight); the joint centres lie near the back, so bending opens only shallow creases
     prof = _torso_profile(spec, sk)
     spine = ["pelvis", "l5", "l4", "l3", "l2", "l1"] + [f"t{k}" for k in range(12, 0, -1)]
     bounds = [prof["y"][0]] + [org[n][1] for n in spine[1:]] + [prof["y"][-1]]
     for k, name in enumerate(spine):
-        y0 = bounds[k] - (0.0 if k == 0 else 0.006)
-        y1 = bounds[k + 1] + (0.006 if k < len(spine) - 1 else 0.0)
-        put(name, _torso_slab(prof, y0, y1, k == 0, k == len(spine) - 1), "trousers" if k <= 2 else "shirt")
+        put(name, _torso_slab(prof, bounds[k], bounds[k + 1], k == 0, k == len(spine) - 1),
+            "trousers" if k <= 2 else "shirt")
     nb = d["neck.breadth"] / 2
     put("neck", limb(pts["spine_top"] + [0, -0.03 * s, 0.015 * s], pts["head_joint"] + [0, 0.02 * s, 0.01 * s],
                      [(0, nb * 1.05, nb * 1.0), (1, nb * 0.95, nb * 0.95)], AROUND_LIMB, cap0=0, cap1=0), "skin")
@@ -257,7 +262,7 @@ def _arm_shapes(spec: BodySpec, sk: Skeleton, side: str, sx: float, put) -> None
     t0 = 0.0
     for k, (name, frac) in enumerate(zip(names, FOREARM_PARTS)):
         t1 = t0 + frac
-        a, b_ = max(t0 - 0.02, 0.0), min(t1 + 0.02, 1.0)
+        a, b_ = t0, t1
         st = [(0.0, *_interp_st(stations, a))] + [((t - a) / (b_ - a), ru, rv) for t, ru, rv in stations if a < t < b_] \
             + [(1.0, *_interp_st(stations, b_))]
         put(name, limb(elbow - [0, a * fl, 0], elbow - [0, b_ * fl, 0], st, cap0=1.0 if k == 0 else 0.0,
