@@ -30,7 +30,8 @@ def in_child_process(request) -> bool:
     if os.environ.get("JACKPY_WINDOW_CHILD"):
         return False
     env = dict(os.environ, JACKPY_WINDOW_CHILD="1")
-    done = subprocess.run([sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", request.node.nodeid],
+    done = subprocess.run([sys.executable, "-m", "pytest", "-o", "addopts=", "-q", "-p", "no:cacheprovider",
+                           request.node.nodeid],
                           cwd=request.config.rootpath, env=env, capture_output=True, text=True, timeout=240)
     assert done.returncode == 0 and " passed" in done.stdout, done.stdout[-4000:] + done.stderr[-2000:]
     return True
