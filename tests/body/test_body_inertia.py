@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from jackpy.body.segment_inertia import GROUPS, de_leva, mesh_mass_properties
-from jackpy.body.shapes import signed_volume, tube, superellipse_ring
+from jackpy.body.shapes import signed_volume, superellipse_ring, tube
 
 
 def test_de_leva_fractions_check():

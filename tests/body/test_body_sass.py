@@ -5,8 +5,17 @@ import pytest
 
 from jackpy.body.anthropometry import AnthropometryError, load_population
 from jackpy.body.human import make_human
-from jackpy.body.sass import (STATURE_PATH, ScalingError, mass_for_stature, scale_segment_unevenly, set_dimension,
-                              set_mass, set_stature, spec_for, uneven_scale)
+from jackpy.body.sass import (
+    STATURE_PATH,
+    ScalingError,
+    mass_for_stature,
+    scale_segment_unevenly,
+    set_dimension,
+    set_mass,
+    set_stature,
+    spec_for,
+    uneven_scale,
+)
 
 
 def test_stature_is_sum_of_path_and_free_rule():

@@ -3,7 +3,14 @@
 import numpy as np
 import pytest
 
-from jackpy.body.spine import SPINE_ANGLES, SPINE_DOFS, SpineDriver, SpineWeights, distribute, spine_group
+from jackpy.body.spine import (
+    SPINE_ANGLES,
+    SPINE_DOFS,
+    SpineDriver,
+    SpineWeights,
+    distribute,
+    spine_group,
+)
 
 
 def _members(driver, theta):
@@ -37,7 +44,7 @@ def test_initiator_moves_most_relative_to_its_range():
 
 def test_full_bend_reaches_every_limit():
     d = SpineDriver()
-    lo, hi = d.group_limits()
+    _lo, hi = d.group_limits()
     m = _members(d, hi)
     assert np.allclose(m, d.upper)
 
@@ -55,7 +62,7 @@ def test_joints_outside_range_do_not_move():
     d = SpineDriver(SpineWeights(bottom=5, top=12, initiator=9))
     m = _members(d, np.radians([15.0, 5.0, 5.0]))
     assert np.allclose(m[:5], 0.0) and np.allclose(m[13:], 0.0)
-    lo, hi = d.group_limits()
+    _lo, hi = d.group_limits()
     assert hi[0] == pytest.approx(d.upper[5:13, SPINE_DOFS.index("flexion")].sum())
 
 

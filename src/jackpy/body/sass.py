@@ -25,7 +25,13 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from jackpy.body.anthropometry import AnthropometryError, Population, check_percentile, check_sex, load_population
+from jackpy.body.anthropometry import (
+    AnthropometryError,
+    Population,
+    check_percentile,
+    check_sex,
+    load_population,
+)
 from jackpy.peabody.geometry import Mesh, Psurf
 from jackpy.peabody.model import Figure
 
@@ -74,7 +80,7 @@ class BodySpec:
         value = {"stature": self.stature, "mass": self.mass, "eye_height": self.eye_height}.get(name)
         return self.table().percentile(self.sex, name, self.dims[name] if value is None else value)
 
-    def copy(self) -> "BodySpec":
+    def copy(self) -> BodySpec:
         return replace(self, dims=dict(self.dims), overrides=dict(self.overrides))
 
 

@@ -14,7 +14,14 @@ from __future__ import annotations
 import numpy as np
 
 from jackpy.body.sass import BodySpec
-from jackpy.body.skeleton import DIGITS, FINGERS, FOREARM_PARTS, SIDES, Skeleton, BUCHHOLZ
+from jackpy.body.skeleton import (
+    BUCHHOLZ,
+    DIGITS,
+    FINGERS,
+    FOREARM_PARTS,
+    SIDES,
+    Skeleton,
+)
 from jackpy.peabody.geometry import Mesh
 
 #: display attribute (X11 colour name) per body region
@@ -81,7 +88,7 @@ def _basis(d: np.ndarray, hint: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 
 def limb(p0: np.ndarray, p1: np.ndarray, stations: list[tuple[float, float, float]], n: int = AROUND_LIMB,
-         hint: np.ndarray = np.array([1.0, 0.0, 0.0]), cap0: float = 1.0, cap1: float = 1.0,
+         hint: tuple[float, float, float] = (1.0, 0.0, 0.0), cap0: float = 1.0, cap1: float = 1.0,
          offsets: list[tuple[float, float, float]] | None = None, exponent: float = 2.0) -> Mesh:
     """A rounded limb from ``p0`` to ``p1``: ``stations`` are ``(t, r_u, r_v)`` (t in [0,1] along the
     axis, radii along ``hint`` and across); ``cap0``/``cap1`` scale the rounded end caps (0 = flat);

@@ -61,8 +61,7 @@ DOF_NAMES = {
 def joint_kind(joint: str) -> str:
     """The kind of a human joint: ``left_index_pip`` -> ``finger_pip``, ``l4_l5`` -> ``spine``."""
     for side in ("left_", "right_"):
-        if joint.startswith(side):
-            joint = joint[len(side):]
+        joint = joint.removeprefix(side)
     first, last = joint.split("_")[0], joint.split("_")[-1]
     if first in FINGERS:
         return f"finger_{last}"

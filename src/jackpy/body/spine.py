@@ -38,7 +38,7 @@ _DOF_INDEX = {a: SPINE_DOFS.index(a) for a in SPINE_ANGLES}
 
 
 def distribute(current: np.ndarray, rest: np.ndarray, lower: np.ndarray, upper: np.ndarray, target: float,
-               participation: "SpineWeights") -> np.ndarray:
+               participation: SpineWeights) -> np.ndarray:
     """One axis of Monheit's model: new joint angles (n,) whose sum is ``target`` (radians).
 
     ``target`` is clamped to what the active joints can reach. Inactive joints keep ``current``.

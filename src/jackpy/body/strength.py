@@ -9,7 +9,6 @@ from __future__ import annotations
 
 from functools import cache
 
-import numpy as np
 from scipy.stats import norm
 
 from jackpy.body.anthropometry import check_percentile, check_sex, data_rows
