@@ -1,0 +1,328 @@
+"""Headless workplace analysis for a set of figure sizes, written as ``report.html`` (with pictures),
+``results.json`` and ``results.csv`` (``jackpy analyze``).
+
+Per figure (sex and percentile of the standard human, standing where the scene says): point reach
+of every reach site with the chosen hand, the hand's reachable workspace (sites classified inside or
+outside), visibility of every view target from the eyes with its view cone and occluders, joint
+torques against strength while reaching the first reach site holding the load, and the clearance
+to every object. Pictures: an overall view, the eye view, and the reach envelope.
+"""
+
+from __future__ import annotations
+
+import csv
+import html
+import io
+import json
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from jackpy.analysis.clearance import ClearanceChecker
+from jackpy.analysis.offscreen import Body, OffscreenRenderer, look_at, perspective
+from jackpy.analysis.parts import figure_parts
+from jackpy.analysis.reach import point_reach
+from jackpy.analysis.statics import Load, joint_torques
+from jackpy.analysis.strength import (
+    dof_strengths, joint_utilisation, torque_vertex_colours, utilisation,
+)
+from jackpy.analysis.view import (
+    environment_bodies, eye_view, figure_bodies, object_visibility, point_visibility,
+)
+from jackpy.analysis.workspace import Chain, reachable_workspace
+from jackpy.atomic import atomic_write_bytes, atomic_write_text
+from jackpy.errors import JackpyError
+from jackpy.peabody.model import Figure
+from jackpy.scene.workplace import Workplace, resolve_target, stand_figure
+
+PICTURE_SIZE = (640, 480)
+
+
+@dataclass
+class Options:
+    """What to analyse: figure sizes ``(sex, percentile)``, reach and view targets (``object.site``
+    or ``object``), the load in the hand (kg), the hand, and the workspace resolution (cells per axis)."""
+
+    figures: list[tuple[str, float]]
+    reach: list[str] = field(default_factory=list)
+    view: list[str] = field(default_factory=list)
+    load_kg: float = 0.0
+    hand: str = "right"
+    resolution: int = 48
+
+
+def parse_figures(text: str) -> list[tuple[str, float]]:
+    """``"female:5,male:95"`` -> ``[("female", 5.0), ("male", 95.0)]``."""
+    out = []
+    for item in filter(None, (s.strip() for s in text.split(","))):
+        sex, _, pct = item.partition(":")
+        try:
+            p = float(pct)
+        except ValueError:
+            raise JackpyError(f"bad figure {item!r}: write SEX:PERCENTILE, e.g. female:5") from None
+        if sex not in ("female", "male") or not 0 < p < 100:
+            raise JackpyError(f"bad figure {item!r}: sex is female or male, percentile in (0, 100)")
+        out.append((sex, p))
+    if not out:
+        raise JackpyError("no figures given")
+    return out
+
+
+def _human(sex: str, percentile: float) -> Figure:
+    from jackpy.body import make_human
+
+    return make_human(sex, percentile)
+
+
+def _strength_table(figure: Figure):
+    from jackpy.body.strength import strength_table
+
+    return dof_strengths(strength_table(figure))
+
+
+def analyse_figure(wp: Workplace, figure: Figure, opts: Options, renderer: OffscreenRenderer | None,
+                   strength_table: Callable[[Figure], Any] = _strength_table,
+                   pictures: dict[str, bytes] | None = None, tag: str = "") -> dict[str, Any]:
+    """Run every analysis for one figure standing in ``wp``; returns the JSON-ready results and, with
+    a renderer, adds PNG pictures to ``pictures`` under ``{tag}-overall.png`` etc."""
+    stand_figure(figure, wp.stand)
+    parts = figure_parts(figure)
+    hand = parts.hands[opts.hand]
+    q_neutral = figure.q
+    res: dict[str, Any] = {"figure": figure.name, "stature_m": _stature(figure), "hand": opts.hand}
+    # --- reach --------------------------------------------------------------------------------
+    reaches = {}
+    postures = {}
+    for ref in opts.reach:
+        _, p = resolve_target(wp.env, ref)
+        r = point_reach(figure, p, opts.hand)
+        postures[ref] = r.q
+        reaches[ref] = {"reached": r.reached, "shortfall_m": r.shortfall, "text": r.describe(),
+                        "target": p.tolist(), "ik_status": r.status}
+    res["reach"] = reaches
+    chain = Chain.to_site(figure, hand.start_joint, hand.segment, hand.site)
+    ws = reachable_workspace(chain, opts.resolution)
+    sites = {ref: resolve_target(wp.env, ref)[1] for ref in opts.reach}
+    res["workspace"] = {"resolution": opts.resolution, "volume_m3": ws.volume(), "samples": ws.samples,
+                        "converged": ws.converged,
+                        "sites": {n: {"inside": i, "distance_m": d} for n, (i, d) in ws.classify(sites).items()}}
+    # --- view ---------------------------------------------------------------------------------
+    ev = eye_view(figure)
+    views = {}
+    if opts.view and renderer is None:
+        res["view_skipped"] = "rendering disabled"
+    if opts.view and renderer is not None:
+        for ref in opts.view:
+            obj, p = resolve_target(wp.env, ref)
+            others = environment_bodies(wp.env, exclude={obj.name}, eye=ev.position) + figure_bodies(figure, ev.position)
+            if "." in ref:
+                v = point_visibility(renderer, ev.position, p, others + figure_bodies(obj), ref)
+            else:
+                v = object_visibility(renderer, ev.position, figure_bodies(obj), others, ref)
+            views[ref] = {"visible_fraction": v.fraction, "occluders": v.occluders,
+                          "angle_deg": float(np.degrees(ev.angle_to(p))), "cone": ev.cone(p)}
+    res["view"] = views
+    # --- strength -----------------------------------------------------------------------------
+    first = opts.reach[0] if opts.reach else None
+    figure.q = postures[first] if first else q_neutral
+    loads = [Load.held_mass(figure, hand.segment, hand.site, opts.load_kg)] if opts.load_kg > 0 else []
+    tau = joint_torques(figure, loads)
+    try:
+        table = strength_table(figure)
+    except (ImportError, JackpyError, KeyError) as exc:
+        res["strength"] = {"available": False, "reason": f"{type(exc).__name__}: {exc}"}
+        util = None
+    else:
+        util = utilisation(figure, tau, table)
+        ju = joint_utilisation(figure, util)
+        arm = [figure.dof_names()[i] for i in chain.dofs]
+        names = figure.dof_names()
+        res["strength"] = {
+            "available": True, "posture": first or "neutral", "load_kg": opts.load_kg,
+            "max_joint": max((j for j in ju if not np.isnan(ju[j])), key=lambda j: ju[j], default=None),
+            "max_utilisation": float(np.nanmax(util)) if np.any(~np.isnan(util)) else None,
+            "arm": [{"dof": n, "torque_Nm": float(tau[names.index(n)]),
+                     "strength_Nm": float(table[n].against(tau[names.index(n)])) if n in table else None,
+                     "utilisation": float(util[names.index(n)])} for n in arm],
+        }
+    # --- clearance ----------------------------------------------------------------------------
+    chk = ClearanceChecker(figure, list(wp.objects.values()), self_collision=False)
+    res["clearance"] = {}
+    for name in wp.objects:
+        c = chk.clearance(name)
+        res["clearance"][name] = {"distance_m": c.distance, "segment": c.segment}
+    res["clearance_posture"] = first or "neutral"
+    # --- pictures -----------------------------------------------------------------------------
+    if renderer is not None and pictures is not None:
+        colours = torque_vertex_colours(figure, joint_utilisation(figure, util)) if util is not None else {}
+        _pictures(renderer, wp, figure, colours, ws, ev, pictures, tag)
+    figure.q = q_neutral
+    return res
+
+
+def _stature(figure: Figure) -> float:
+    ys = []
+    for name, t in figure.world_transforms().items():
+        seg = figure.segments[name]
+        if seg.psurf is not None and seg.psurf.mesh is not None:
+            ys.append((seg.psurf.posed_mesh().vertices @ t[:3, :3].T + t[:3, 3])[:, 1])
+    return float(np.ptp(np.concatenate(ys))) if ys else 0.0
+
+
+def _png(rgb: np.ndarray) -> bytes:
+    from PIL import Image
+
+    buf = io.BytesIO()
+    Image.fromarray(rgb).save(buf, format="PNG")
+    return buf.getvalue()
+
+
+def _pictures(renderer: OffscreenRenderer, wp: Workplace, figure: Figure, colours: dict[str, np.ndarray],
+              ws, ev, pictures: dict[str, bytes], tag: str) -> None:
+    env_bodies = [Body(b.name, b.mesh, b.model, tuple(wp.env.figures[b.name.split(".")[0]].colour) + (1.0,))
+                  for b in environment_bodies(wp.env)]
+    fig_bodies = figure_bodies(figure)
+    for b in fig_bodies:
+        seg = b.name.split(".", 1)[1]
+        if seg in colours:
+            b.vertex_colours = colours[seg]
+        else:
+            b.colour = (0.95, 0.95, 0.95, 1.0)
+    everything = env_bodies + fig_bodies
+    pts = np.vstack([b.mesh.vertices @ b.model[:3, :3].T + b.model[:3, 3] for b in everything])
+    lo, hi = pts.min(axis=0), pts.max(axis=0)
+    centre = (lo + hi) / 2
+    radius = float(np.linalg.norm(hi - lo)) / 2
+    aspect = PICTURE_SIZE[0] / PICTURE_SIZE[1]
+    eye = centre + radius * 2.2 * np.array([0.75, 0.45, 0.85]) / np.linalg.norm([0.75, 0.45, 0.85])
+    proj = perspective(np.radians(40), aspect, 0.05, radius * 6)
+    view = look_at(eye, centre)
+    pictures[f"{tag}-overall.png"] = _png(renderer.render(everything, view, proj))
+    pictures[f"{tag}-eye.png"] = _png(renderer.render(
+        environment_bodies(wp.env) + figure_bodies(figure, ev.position), ev.view_matrix(), ev.projection()))
+    envelope = Body("envelope", ws.surface(), np.eye(4), (0.2, 0.5, 1.0, 0.3))
+    pictures[f"{tag}-reach.png"] = _png(renderer.render(everything, view, proj, translucent=[envelope]))
+
+
+def write_report(wp: Workplace, opts: Options, out_dir: str | Path,
+                 make_figure: Callable[[str, float], Figure] = _human,
+                 strength_table: Callable[[Figure], Any] = _strength_table,
+                 render: bool = True) -> dict[str, Any]:
+    """Analyse every figure size of ``opts`` and write ``report.html``, ``results.json``,
+    ``results.csv`` and the pictures into ``out_dir`` (created; files written atomically)."""
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    renderer = None
+    if render:
+        renderer = OffscreenRenderer(PICTURE_SIZE)
+    pictures: dict[str, bytes] = {}
+    results = {"scene": str(wp.path) if wp.path else None, "load_kg": opts.load_kg, "hand": opts.hand,
+               "figures": []}
+    try:
+        for sex, pct in opts.figures:
+            fig = make_figure(sex, pct)
+            tag = f"{sex}{pct:g}"
+            r = analyse_figure(wp, fig, opts, renderer, strength_table, pictures, tag)
+            r.update({"sex": sex, "percentile": pct, "tag": tag})
+            results["figures"].append(r)
+    finally:
+        if renderer is not None:
+            renderer.release()
+    for name, data in pictures.items():
+        atomic_write_bytes(out / name, data)
+    atomic_write_text(out / "results.json", json.dumps(results, indent=1, default=_json_default) + "\n")
+    atomic_write_text(out / "results.csv", _csv(results))
+    atomic_write_text(out / "report.html", _html(results, pictures))
+    return results
+
+
+def _json_default(o: Any) -> Any:
+    if isinstance(o, np.generic):
+        return o.item()
+    raise TypeError(type(o).__name__)
+
+
+def _rows(results: dict[str, Any]) -> list[list[Any]]:
+    rows = []
+    for r in results["figures"]:
+        f = f"{r['sex']}:{r['percentile']:g}"
+        for ref, v in r["reach"].items():
+            rows.append([f, "reach", ref, "shortfall", round(v["shortfall_m"], 4), "m", v["text"]])
+        for ref, v in r["workspace"]["sites"].items():
+            rows.append([f, "workspace", ref, "distance", round(v["distance_m"], 4), "m",
+                         "inside" if v["inside"] else "outside"])
+        rows.append([f, "workspace", r["hand"], "volume", round(r["workspace"]["volume_m3"], 4), "m3", ""])
+        for ref, v in r["view"].items():
+            occ = "; ".join(f"{k} {100 * s:.0f}%" for k, s in v["occluders"].items())
+            rows.append([f, "view", ref, "visible", round(v["visible_fraction"], 3), "fraction",
+                         f"{v['cone'] or 'outside field'}" + (f"; hidden by {occ}" if occ else "")])
+        s = r["strength"]
+        if s.get("available"):
+            for d in s["arm"]:
+                rows.append([f, "strength", d["dof"], "utilisation", round(d["utilisation"], 3), "fraction",
+                             f"{d['torque_Nm']:.1f} N m of {d['strength_Nm']:.1f}" if d["strength_Nm"] is not None else ""])
+        for name, c in r["clearance"].items():
+            rows.append([f, "clearance", name, "distance", round(c["distance_m"], 4), "m", c["segment"]])
+    return rows
+
+
+def _csv(results: dict[str, Any]) -> str:
+    buf = io.StringIO()
+    w = csv.writer(buf, lineterminator="\n")
+    w.writerow(["figure", "analysis", "target", "metric", "value", "unit", "note"])
+    w.writerows(_rows(results))
+    return buf.getvalue()
+
+
+def _html(results: dict[str, Any], pictures: dict[str, bytes]) -> str:
+    e = html.escape
+    parts = ["<!doctype html><html><head><meta charset='utf-8'><title>jackpy workplace report</title>",
+             "<style>body{font-family:sans-serif;margin:2em}table{border-collapse:collapse;margin:1em 0}"
+             "td,th{border:1px solid #ccc;padding:3px 8px;text-align:left}img{margin:4px;border:1px solid #ccc}"
+             ".bad{color:#b00}.good{color:#070}</style></head><body>",
+             f"<h1>Workplace report</h1><p>Scene: {e(str(results['scene']))}; hand: {e(results['hand'])}; "
+             f"load in the hand: {results['load_kg']:g} kg.</p>"]
+    for r in results["figures"]:
+        t = r["tag"]
+        parts.append(f"<h2>{e(r['sex'])}, {r['percentile']:g}th percentile (stature {r['stature_m'] * 100:.1f} cm)</h2>")
+        parts.append("".join(f"<img src='{t}-{k}.png' alt='{k}' width='427'>" for k in ("overall", "eye", "reach")
+                             if f"{t}-{k}.png" in pictures))
+        parts.append("<h3>Reach</h3><table><tr><th>target</th><th>result</th><th>in workspace</th></tr>")
+        for ref, v in r["reach"].items():
+            ws = r["workspace"]["sites"].get(ref, {})
+            cls = "good" if v["reached"] else "bad"
+            parts.append(f"<tr><td>{e(ref)}</td><td class='{cls}'>{e(v['text'])}</td>"
+                         f"<td>{'inside' if ws.get('inside') else 'outside'}</td></tr>")
+        parts.append(f"</table><p>Workspace volume of the {e(r['hand'])} hand: "
+                     f"{r['workspace']['volume_m3']:.3f} m³ ({r['workspace']['resolution']}³ voxels).</p>")
+        if r["view"]:
+            parts.append("<h3>View</h3><table><tr><th>target</th><th>visible</th><th>view cone</th><th>hidden by</th></tr>")
+            for ref, v in r["view"].items():
+                occ = ", ".join(f"{e(k)} ({100 * s:.0f}%)" for k, s in v["occluders"].items()) or "–"
+                parts.append(f"<tr><td>{e(ref)}</td><td>{100 * v['visible_fraction']:.0f}%</td>"
+                             f"<td>{e(v['cone'] or 'outside the visual field')} ({v['angle_deg']:.0f}°)</td><td>{occ}</td></tr>")
+            parts.append("</table>")
+        s = r["strength"]
+        parts.append("<h3>Strength</h3>")
+        if s.get("available"):
+            parts.append(f"<p>Posture: reaching {e(s['posture'])}, {s['load_kg']:g} kg in the hand. Highest "
+                         f"utilisation: {e(str(s['max_joint']))} at {100 * (s['max_utilisation'] or 0):.0f}% of strength.</p>"
+                         "<table><tr><th>DOF</th><th>torque N m</th><th>strength N m</th><th>utilisation</th></tr>")
+            for d in s["arm"]:
+                cls = "bad" if d["utilisation"] > 1 else ""
+                sn = f"{d['strength_Nm']:.1f}" if d["strength_Nm"] is not None else "–"
+                parts.append(f"<tr><td>{e(d['dof'])}</td><td>{d['torque_Nm']:.1f}</td><td>{sn}</td>"
+                             f"<td class='{cls}'>{100 * d['utilisation']:.0f}%</td></tr>")
+            parts.append("</table>")
+        else:
+            parts.append(f"<p>Not available: {e(s['reason'])}</p>")
+        parts.append(f"<h3>Clearance</h3><p>Posture: {e(r['clearance_posture'])}.</p>"
+                     "<table><tr><th>object</th><th>clearance</th><th>nearest segment</th></tr>")
+        for name, c in r["clearance"].items():
+            parts.append(f"<tr><td>{e(name)}</td><td>{c['distance_m'] * 100:.1f} cm</td><td>{e(c['segment'])}</td></tr>")
+        parts.append("</table>")
+    parts.append("</body></html>\n")
+    return "\n".join(parts)

@@ -1,0 +1,46 @@
+"""``jackpy analyze``: run the workplace analyses headless for several figure sizes and write a report."""
+
+from __future__ import annotations
+
+import argparse
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("analyze", help="reach, view, strength and clearance of a workplace scene; "
+                                       "writes report.html, results.json and results.csv")
+    p.add_argument("scene", metavar="SCENE", help="workplace scene file (JSON, see docs/analysis.md)")
+    p.add_argument("--figures", default="female:5,male:95",
+                   help="figure sizes as SEX:PERCENTILE, comma separated (default: female:5,male:95)")
+    p.add_argument("--reach", default=None, help="reach targets object.site, comma separated (default: the scene's)")
+    p.add_argument("--view", default=None, help="view targets object or object.site, comma separated (default: the scene's)")
+    p.add_argument("--load", type=float, default=None, metavar="KG", help="load held in the hand, kg (default: the scene's)")
+    p.add_argument("--hand", choices=("right", "left"), default=None, help="reaching hand (default: the scene's)")
+    p.add_argument("--resolution", type=int, default=48, help="workspace voxels per axis (default 48)")
+    p.add_argument("--no-pictures", action="store_true", help="skip rendering (and visibility, which renders)")
+    p.add_argument("-o", "--output", required=True, metavar="DIR", help="folder for the report")
+    p.set_defaults(func=run)
+
+
+def _list(text: str | None, default: list[str]) -> list[str]:
+    return default if text is None else [s.strip() for s in text.split(",") if s.strip()]
+
+
+def run(args: argparse.Namespace) -> int:
+    from jackpy.analysis.report import Options, parse_figures, write_report
+    from jackpy.errors import JackpyError
+    from jackpy.scene.workplace import load_workplace, resolve_target
+
+    wp = load_workplace(args.scene)
+    opts = Options(parse_figures(args.figures), _list(args.reach, wp.plan.reach), _list(args.view, wp.plan.view),
+                   wp.plan.load_kg if args.load is None else args.load, args.hand or wp.plan.hand, args.resolution)
+    if opts.load_kg < 0 or opts.resolution < 4:
+        raise JackpyError("--load must be >= 0 and --resolution >= 4")
+    for ref in opts.reach + opts.view:
+        resolve_target(wp.env, ref)  # unknown names fail before any work
+    results = write_report(wp, opts, args.output, render=not args.no_pictures)
+    for r in results["figures"]:
+        reached = sum(v["reached"] for v in r["reach"].values())
+        seen = ", ".join(f"{k} {100 * v['visible_fraction']:.0f}%" for k, v in r["view"].items()) or "-"
+        print(f"{r['sex']} {r['percentile']:g}%: reach {reached}/{len(r['reach'])}, view {seen}")
+    print(f"report: {args.output}/report.html")
+    return 0
