@@ -20,6 +20,7 @@ import numpy as np
 
 from jackpy.behaviors.base import BehaviorBase, param
 from jackpy.errors import FigureError
+from jackpy.behaviors.loop import register_reusable
 from jackpy.ik.goals import Context, Goal, GoalEval
 
 if TYPE_CHECKING:
@@ -71,6 +72,10 @@ class LimitSpring(Goal):
             return GoalEval(np.zeros(1), J)
         J[0, ctx.cols == self.dof] = -self.sign
         return GoalEval(np.array([short]), J, degrees=float(np.degrees(short)))
+
+
+# the loop keeps a spring's compiled form across frames (joint is part of its name)
+register_reusable(LimitSpring, ("extension", "sign", "margin", "weight"))
 
 
 @dataclass

@@ -29,13 +29,39 @@ from jackpy.behaviors.base import Behavior, BehaviorBase
 from jackpy.behaviors.state import BehaviorState, FootState, HandState
 from jackpy.behaviors.support import BalanceFrame, convex_hull, floor, yaw_of
 from jackpy.ik import Problem, solve
-from jackpy.ik.goals import Aim, CentreOfMass, Goal
+from jackpy.ik.goals import Aim, CentreOfMass, Goal, Orientation, Plane, Position
 from jackpy.peabody.model import Figure
 
 #: foot points lower than this (m) touch the floor
 CONTACT_HEIGHT = 0.02
 #: distance (m) of the aim point of a direction goal
 FAR = 1.0e3
+
+#: goal types whose compiled form the loop reuses across frames, with the attributes that carry a
+#: frame's targets (copied from the fresh goal a behavior made into the cached one); binding
+#: (site, chain) is part of the cache key, so nothing that ``bind`` resolves is ever copied
+REUSABLE: dict[type, tuple[str, ...]] = {
+    Position: ("target", "weight"),
+    Orientation: ("target", "cx", "cy", "weight"),
+    Aim: ("target", "axis", "c", "weight"),
+    Plane: ("point", "normal", "weight"),
+    CentreOfMass: ("point", "up", "weight"),
+}
+
+
+def register_reusable(cls: type, attributes: tuple[str, ...]) -> None:
+    """Let the loop reuse goals of type ``cls`` across frames, copying ``attributes`` each frame."""
+    REUSABLE[cls] = tuple(attributes)
+
+
+def _goal_key(goal: Goal) -> tuple | None:
+    """Identity of a goal across frames (None: not reusable): type, name, site and chain."""
+    if type(goal) not in REUSABLE:
+        return None
+    chain = getattr(goal, "chain", None)
+    if chain is not None and not isinstance(chain, str):
+        chain = tuple(chain)
+    return type(goal), goal.name, getattr(goal, "site_name", None), chain
 
 
 @dataclass
@@ -145,6 +171,10 @@ class BehaviorLoop:
         self.max_iterations = max_iterations
         self.tol_position = tol_position
         self.state = BehaviorState()
+        #: per pass: goals kept across frames (by :func:`_goal_key`) and the last problem with the
+        #: identities of its entries, so an unchanged set of goals is solved without recompiling
+        self._goal_cache: dict[str, dict[tuple, Goal]] = {}
+        self._problems: dict[str, tuple[list[tuple[int, int]], Problem]] = {}
         self._arm_lengths: dict[str, float] = {}
         self._footprints = self._footprint_locals()
         self._locked = self._pass_locks()
@@ -284,15 +314,50 @@ class BehaviorLoop:
                 break
         return passes, com_err, errors
 
+    def _reuse(self, which: str, goal: Goal) -> Goal:
+        """The cached goal of pass ``which`` with ``goal``'s identity, its targets updated from
+        ``goal``; or ``goal`` itself (cached for next frame) when there is none."""
+        key = _goal_key(goal)
+        if key is None:
+            return goal
+        cache = self._goal_cache.setdefault(which, {})
+        old = cache.get(key)
+        if old is None or old is goal:
+            cache[key] = goal
+            return goal
+        for attr in REUSABLE[type(goal)]:
+            setattr(old, attr, getattr(goal, attr))
+        return old
+
+    def problem_for(self, goals: list[tuple[Goal, int]], which: str) -> Problem:
+        """The IK problem of pass ``which`` for ``goals``: last frame's when the same goals (by
+        identity, see :meth:`_reuse`) sit at the same levels, so it keeps its compiled form (it
+        recompiles by itself when the figure is re-rooted); otherwise a new one."""
+        entries = []
+        seen: set[int] = set()
+        for g, level in goals:
+            g = self._reuse(which, g)
+            if id(g) in seen:  # two goals with one identity: keep both, as distinct objects
+                g = goals[len(entries)][0]
+            seen.add(id(g))
+            entries.append((g, level))
+        key = [(id(g), lv) for g, lv in entries]
+        cached = self._problems.get(which)
+        if cached is not None and cached[0] == key:
+            return cached[1]
+        problem = Problem(self.figure)
+        for g, level in entries:
+            problem.add(g, level)
+        problem.lock(*self._locked[which])
+        self._problems[which] = (key, problem)
+        return problem
+
     def _pass(self, goals: list[tuple[Goal, int]], which: str) -> tuple[float, float]:
         """Solve ``goals`` (goal, priority level) moving only the joints of pass ``which``;
         returns the worst residual (m, deg)."""
         if not goals:
             return 0.0, 0.0
-        problem = Problem(self.figure)
-        for g, level in goals:
-            problem.add(g, level)
-        problem.lock(*self._locked[which])
+        problem = self.problem_for(goals, which)
         result = solve(problem, max_iterations=self.max_iterations, tol_position=self.tol_position)
         return (max((g.metres for g in result.goals), default=0.0),
                 max((g.degrees for g in result.goals), default=0.0))
