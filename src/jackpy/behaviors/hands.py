@@ -45,6 +45,10 @@ class HandsParams:
     weight: float = param(1.0, "weight of the hand position goals", "", (0.0, 1e4))
     orientation_weight: float = param(0.1, "weight of the hand orientation goals", "", (0.0, 1e4))
     lean_weight: float = param(0.5, "weight of an out-of-reach hand goal on the body", "", (0.0, 1e4))
+    track_arm: bool = param(True, "while translated, the palm keeps its region's rule as the arm swings "
+                            "(fingers along the shoulder-to-hand line), so the goal stays reachable")
+    orientation_level: int = param(1, "priority level of the hand orientation in the arm pass (position is 0)",
+                                   "", (0, 3))
     lean_rate: float = param(0.01, "balance-point shift per frame towards an out-of-reach goal", "cm",
                              (0.0, 0.1))
 
@@ -132,15 +136,15 @@ class Hands(BehaviorBase):
             if p.orientation_rules and hs.rules:
                 reg = self.region(frame, side, hs.goal[:3, 3])
                 if reg != hs.region:
-                    hs.region, hs.blending = reg, bool(hs.region)
-                if hs.blending:
+                    hs.region, hs.blending = reg, True
+                if hs.blending or p.track_arm:
                     target = self.canonical(frame, side, hs.goal[:3, 3], reg)
                     hs.goal[:3, :3], left = turn_towards(hs.goal[:3, :3], target, p.max_turn)
                     hs.blending = left > 0.0
             frame.arms[side].append((Position(palm, hs.goal, weight=p.weight, name=f"hand {side}"), 0))
             if hs.orient:
                 frame.arms[side].append((Orientation(palm, hs.goal[:3, :3], weight=p.orientation_weight,
-                                                     name=f"hand frame {side}"), 0))
+                                                     name=f"hand frame {side}"), p.orientation_level))
             if hs.lean and self._beyond_reach(frame, side, hs.goal[:3, 3]):
                 frame.body.append((Position(palm, hs.goal, weight=p.lean_weight, name=f"lean {side}"), 1))
 

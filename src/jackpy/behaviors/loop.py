@@ -30,6 +30,7 @@ from jackpy.behaviors.state import BehaviorState, FootState, HandState
 from jackpy.behaviors.support import BalanceFrame, convex_hull, floor, yaw_of
 from jackpy.ik import Problem, solve
 from jackpy.ik.goals import Aim, CentreOfMass, Goal, Orientation, Plane, Position
+from jackpy.peabody.kinematics import FKResult
 from jackpy.peabody.model import Figure
 
 #: foot points lower than this (m) touch the floor
@@ -65,6 +66,24 @@ def _goal_key(goal: Goal) -> tuple | None:
 
 
 @dataclass
+class PassSettings:
+    """Interactive budget of one kind of pass: at most ``iterations`` solver iterations per solve
+    (the solve warm-starts from the last frame's posture, so an unfinished solve goes on next
+    frame), goals achieved within ``tol_position`` m and ``tol_angle`` degrees."""
+
+    iterations: int
+    tol_position: float
+    tol_angle: float
+
+
+def default_pass_settings() -> dict[str, PassSettings]:
+    """Budgets of the body pass (legs and spine; planted feet held to 0.2 mm), the head pass and
+    each arm pass."""
+    return {"body": PassSettings(15, 2e-4, 0.1), "head": PassSettings(8, 1e-3, 0.2),
+            "arm": PassSettings(10, 5e-4, 0.5)}
+
+
+@dataclass
 class FrameReport:
     """What one frame did: passes of the COM loop, the COM's horizontal distance from the balance
     line after the last pass (m), the root, balance parameters of the COM, notes of behaviors
@@ -97,9 +116,7 @@ class Frame:
         self._refresh()
 
     def _refresh(self) -> None:
-        kin = self.figure.kinematics()
-        self.fk = kin.forward(self.figure.q, self.figure.location)
-        self.com = kin.centre_of_mass(self.fk)
+        self.fk, self.com = self.loop.posture()
         self._balance: BalanceFrame | None = None
 
     # ----- reading the posture -----------------------------------------------------------------
@@ -160,7 +177,8 @@ class BehaviorLoop:
 
     def __init__(self, figure: Figure, anatomy: Anatomy, behaviors: Iterable[Behavior] | None = None,
                  max_passes: int = 3, com_tolerance: float = 0.002, max_iterations: int = 30,
-                 tol_position: float = 2e-4) -> None:
+                 tol_position: float = 2e-4, passes: dict[str, PassSettings] | None = None,
+                 combine_limbs: bool = True) -> None:
         from jackpy.behaviors import default_behaviors
 
         self.figure = figure
@@ -170,12 +188,19 @@ class BehaviorLoop:
         self.com_tolerance = com_tolerance
         self.max_iterations = max_iterations
         self.tol_position = tol_position
+        #: per kind of pass ("body", "head", "arm"): iteration cap and tolerances; ``max_iterations``
+        #: caps every pass and ``tol_position`` is the body pass's (planted feet) tolerance
+        self.passes = default_pass_settings() if passes is None else dict(passes)
+        #: solve the head and both arms together (one forward pass per evaluation for all three)
+        self.combine_limbs = combine_limbs
         self.state = BehaviorState()
         #: per pass: goals kept across frames (by :func:`_goal_key`) and the last problem with the
         #: identities of its entries, so an unchanged set of goals is solved without recompiling
         self._goal_cache: dict[str, dict[tuple, Goal]] = {}
         self._problems: dict[str, tuple[list[tuple[int, int]], Problem]] = {}
         self._arm_lengths: dict[str, float] = {}
+        self._posture: tuple | None = None
+        self._balance_cache: tuple | None = None
         self._footprints = self._footprint_locals()
         self._locked = self._pass_locks()
         self.reset_state()
@@ -212,6 +237,7 @@ class BehaviorLoop:
                "head": list(a.neck_joints) + list(a.eye_joints.values())}
         for side, h in a.hands.items():
             own[side] = list(h.arm_joints)
+        own["limbs"] = own["head"] + [j for s in a.hands for j in own[s]]
         return {k: [j for j in self.figure.joints if j not in set(v)] for k, v in own.items()}
 
     def reset_state(self) -> None:
@@ -226,8 +252,29 @@ class BehaviorLoop:
         st.pelvis_goal = None
         self.set_root("right" if x >= 0.5 else "left")
 
+    def posture(self) -> tuple[FKResult, np.ndarray]:
+        """Forward kinematics and centre of mass of the figure's current posture; computed once
+        while the displacements, the root location and the rooting stay the same."""
+        kin = self.figure.kinematics()
+        q = self.figure.q
+        loc = self.figure.location
+        c = self._posture
+        if c is None or c[0] is not kin or not np.array_equal(c[1], q) or not np.array_equal(c[2], loc):
+            fk = kin.forward(q, loc)
+            c = self._posture = (kin, q, np.array(loc, dtype=float), fk, kin.centre_of_mass(fk))
+        return c[3], c[4]
+
     def balance_frame_for(self, targets: dict[str, np.ndarray]) -> BalanceFrame:
-        """Balance frame of the feet at ball-site poses ``targets`` (contact: below CONTACT_HEIGHT)."""
+        """Balance frame of the feet at ball-site poses ``targets`` (contact: below CONTACT_HEIGHT);
+        the last one is reused while the targets are unchanged."""
+        key = tuple((s, t.tobytes()) for s, t in sorted(targets.items()))
+        if self._balance_cache is not None and self._balance_cache[0] == key:
+            return self._balance_cache[1]
+        bf = self._balance_frame_for(targets)
+        self._balance_cache = (key, bf)
+        return bf
+
+    def _balance_frame_for(self, targets: dict[str, np.ndarray]) -> BalanceFrame:
         refs, fwd, contact = {}, np.zeros(2), []
         for side, t in targets.items():
             pts = self._footprints[side] @ t[:3, :3].T + t[:3, 3]
@@ -300,15 +347,27 @@ class BehaviorLoop:
         if frame.com_goal is not None:
             body.append((CentreOfMass(frame.com_goal, weight=frame.com_weight, name="balance"), frame.com_level))
         body_pass = "body" if frame.spine_free else "legs"
+        if self.combine_limbs:
+            # head and arms move disjoint joints after the body: one solve, one forward pass per
+            # evaluation for all three (their goals do not interact)
+            parts = {"head": frame.head, **{s: frame.arms[s] for s in SIDES}}
+            limbs = [(g, lv) for goals in parts.values() for g, lv in goals]
+            owner = [k for k, goals in parts.items() for _ in goals]
         passes = 0
         for passes in range(1, self.max_passes + 1):
             errors["body"] = self._pass(body, body_pass)
-            errors["head"] = self._pass(frame.head, "head")
-            for side in SIDES:
-                errors[side] = self._pass(frame.arms[side], side)
+            if self.combine_limbs:
+                per_goal = self._solve_pass(limbs, "limbs")
+                for k in parts:
+                    mine = [e for e, o in zip(per_goal, owner) if o == k]
+                    errors[k] = (max((e[0] for e in mine), default=0.0), max((e[1] for e in mine), default=0.0))
+            else:
+                errors["head"] = self._pass(frame.head, "head")
+                for side in SIDES:
+                    errors[side] = self._pass(frame.arms[side], side)
             if frame.com_goal is None:
                 break
-            c = self.figure.centre_of_mass()
+            c = self.posture()[1]
             com_err = float(np.hypot(c[0] - frame.com_goal[0], c[2] - frame.com_goal[2]))
             if com_err <= self.com_tolerance:
                 break
@@ -352,15 +411,24 @@ class BehaviorLoop:
         self._problems[which] = (key, problem)
         return problem
 
-    def _pass(self, goals: list[tuple[Goal, int]], which: str) -> tuple[float, float]:
-        """Solve ``goals`` (goal, priority level) moving only the joints of pass ``which``;
-        returns the worst residual (m, deg)."""
+    def _solve_pass(self, goals: list[tuple[Goal, int]], which: str) -> list[tuple[float, float]]:
+        """Solve ``goals`` (goal, priority level) moving only the joints of pass ``which`` within its
+        budget (:class:`PassSettings`); returns each goal's residual (m, deg)."""
         if not goals:
-            return 0.0, 0.0
+            return []
         problem = self.problem_for(goals, which)
-        result = solve(problem, max_iterations=self.max_iterations, tol_position=self.tol_position)
-        return (max((g.metres for g in result.goals), default=0.0),
-                max((g.degrees for g in result.goals), default=0.0))
+        kind = "body" if which in ("body", "legs") else "head" if which == "head" else "arm"
+        ps = self.passes[kind]
+        tol = min(ps.tol_position, self.tol_position) if kind == "body" else ps.tol_position
+        tol_angle = min(ps.tol_angle, self.passes["head"].tol_angle) if which == "limbs" else ps.tol_angle
+        result = solve(problem, max_iterations=min(ps.iterations, self.max_iterations), tol_position=tol,
+                       tol_angle=tol_angle)
+        return [(g.metres, g.degrees) for g in result.goals]
+
+    def _pass(self, goals: list[tuple[Goal, int]], which: str) -> tuple[float, float]:
+        """Solve one pass; returns the worst residual (m, deg)."""
+        errs = self._solve_pass(goals, which)
+        return max((e[0] for e in errs), default=0.0), max((e[1] for e in errs), default=0.0)
 
 
-__all__ = ["BehaviorBase", "BehaviorLoop", "Frame", "FrameReport"]
+__all__ = ["BehaviorBase", "BehaviorLoop", "Frame", "FrameReport", "PassSettings", "default_pass_settings"]
