@@ -40,11 +40,25 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--record", metavar="FILE", help="record every raw sample to FILE")
     p.set_defaults(func=run_probe)
 
-    r = sub.add_parser("flock-replay", help="replay a Flock recording: print its samples")
+    r = sub.add_parser("flock-replay", help="replay a Flock recording: print its samples, or drive a figure")
     r.add_argument("file")
     r.add_argument("--speed", type=float, default=1.0, help="real-time factor (0 = as fast as possible)")
     r.add_argument("--step", action="store_true", help="frame by frame: press Enter for the next frame")
     r.add_argument("--json", action="store_true", help="one JSON object per frame")
+    g = r.add_argument_group("driving a figure (--figure)")
+    g.add_argument("--figure", action="store_true",
+                   help="drive the standard human from the recording (pelvis, spine, hands, stepping)")
+    g.add_argument("--sex", choices=("male", "female"), help="standard human's sex (default: the recording's, else male)")
+    g.add_argument("--percentile", type=float, help="standard human's stature percentile (default: the recording's, else 50)")
+    g.add_argument("--sensors", metavar="JSON", help="sensor configuration (default: the recording's, else Jack's four)")
+    g.add_argument("--calibrate-frame", type=int, metavar="K",
+                   help="frame where the operator stands in the neutral pose (default: the recording's, else 0)")
+    g.add_argument("--every", type=int, default=1, metavar="N", help="with --speed 0 or --step: drive every N-th frame")
+    g.add_argument("--smooth", action="store_true", help="one-euro smoothing of the sensor targets")
+    g.add_argument("--out", metavar="FIG", help="write the final posture: Peabody .fig (psurfs beside it) or .glb")
+    g.add_argument("--png", metavar="PNG", help="write a strip of snapshots of the figure (offscreen rendering)")
+    g.add_argument("--strip", type=int, default=6, metavar="K", help="snapshots in the --png strip (default 6)")
+    g.add_argument("--quiet", action="store_true", help="print only the summary")
     r.set_defaults(func=run_replay)
 
 
@@ -140,6 +154,8 @@ def run_replay(args: argparse.Namespace) -> int:
     rec = read_recording(args.file)
     if not rec.samples:
         raise DeviceError(f"{args.file}: the recording holds no samples")
+    if args.figure:
+        return run_replay_figure(args, rec)
     interactive = args.step and os.isatty(sys.stdin.fileno())
     for i, frame in enumerate(replay(rec, 0.0 if args.step else args.speed)):
         t = min(s.time for s in frame.values())
@@ -156,3 +172,99 @@ def run_replay(args: argparse.Namespace) -> int:
         if interactive:
             input()
     return 0
+
+
+def _figure_drive(args: argparse.Namespace, rec):
+    """The standard human, its behavior loop and a sensor drive configured for ``rec``."""
+    from jackpy.behaviors import BehaviorLoop
+    from jackpy.behaviors.anatomy import human_anatomy
+    from jackpy.behaviors.sensor_drive import DriveConfig, SensorDrive
+    from jackpy.body.human import make_human
+    from jackpy.devices.sensors import default_config, load_sensor_config, sensor_config_from_dict
+
+    meta = rec.header.get("figure") if isinstance(rec.header.get("figure"), dict) else {}
+    sex = args.sex or meta.get("sex", "male")
+    percentile = args.percentile if args.percentile is not None else float(meta.get("percentile", 50))
+    if not 1.0 <= percentile <= 99.0:
+        raise DeviceError(f"--percentile must be within 1..99, not {percentile:g}")
+    if args.sensors:
+        sensors = load_sensor_config(args.sensors)
+    elif isinstance(rec.header.get("sensors"), dict):
+        sensors = sensor_config_from_dict(rec.header["sensors"], f"{args.file} (header)")
+    else:
+        sensors = default_config()
+    fig = make_human(sex, percentile)
+    loop = BehaviorLoop(fig, human_anatomy(fig))
+    return fig, SensorDrive(loop, None, DriveConfig(sensors=sensors, smoothing=args.smooth))
+
+
+def run_replay_figure(args: argparse.Namespace, rec) -> int:
+    """``flock-replay FILE --figure``: drive the standard human from a recording, headless."""
+    import numpy as np
+
+    from jackpy.behaviors.sensor_drive import replay_into
+
+    if args.every < 1:
+        raise DeviceError("--every must be >= 1")
+    if args.strip < 1:
+        raise DeviceError("--strip must be >= 1")
+    fig, drive = _figure_drive(args, rec)
+    frames = rec.frames()
+    cal = args.calibrate_frame if args.calibrate_frame is not None else int(rec.header.get("calibrate_frame", 0))
+    if not 0 <= cal < len(frames):
+        raise DeviceError(f"--calibrate-frame {cal} is outside the recording's {len(frames)} frames")
+    interactive = args.step and os.isatty(sys.stdin.fileno())
+    speed = 0.0 if args.step else args.speed
+    shots, next_shot = [], 0
+    marks = [round(i * (len(frames) - 1) / max(1, args.strip - 1)) for i in range(args.strip)]
+    worst: dict[str, float] = {}
+    driven = 0
+    t0 = time.perf_counter()
+    for k, r in replay_into(drive, rec, speed=speed, every=args.every, calibrate_frame=cal):
+        driven += 1
+        for part, e in r.errors.items():
+            worst[part] = max(worst.get(part, 0.0), e)
+        t = min(s.time for s in frames[k].values())
+        if args.json:
+            print(json.dumps({"frame": k, "t": t, "errors_m": r.errors,
+                              "spine_deg": None if r.spine is None else [float(np.degrees(a)) for a in r.spine],
+                              "steps": drive.loop.state.steps_taken, "notes": r.notes,
+                              "step_ms": r.step_ms}), flush=True)
+        elif not args.quiet:
+            errs = "  ".join(f"{p} {e * 100:5.2f}" for p, e in r.errors.items())
+            spine = "" if r.spine is None else "  spine %+.1f %+.1f %+.1f deg" % tuple(np.degrees(r.spine))
+            notes = f"  [{'; '.join(r.notes)}]" if r.notes else ""
+            print(f"frame {k:6d}  t={t:7.3f} s  error cm: {errs}{spine}{notes}", flush=True)
+        if args.png:
+            while next_shot < len(marks) and k >= marks[next_shot]:
+                shots.append(_snapshot(fig))
+                next_shot += 1
+        if interactive:
+            input()
+    elapsed = time.perf_counter() - t0
+    summary = (f"drove {driven} of {len(frames)} frames in {elapsed:.2f} s; worst error cm: "
+               + ", ".join(f"{p} {e * 100:.2f}" for p, e in worst.items())
+               + f"; steps taken {drive.loop.state.steps_taken}")
+    print(summary, file=sys.stderr if args.json else sys.stdout, flush=True)
+    if args.out:
+        from jackpy.commands.human import write_human
+
+        write_human(args.out, fig)  # .fig with psurfs beside it (or .glb, .obj ...)
+        print(f"wrote {args.out}", file=sys.stderr if args.json else sys.stdout, flush=True)
+    if args.png:
+        from jackpy.ui.render import write_png
+
+        write_png(args.png, np.concatenate(shots, axis=1))
+        print(f"wrote {args.png} ({len(shots)} snapshots)", file=sys.stderr if args.json else sys.stdout,
+              flush=True)
+    return 0
+
+
+def _snapshot(fig):
+    """RGBA image of ``fig`` alone, from the side-front (offscreen)."""
+    from jackpy.peabody import Environment
+    from jackpy.ui.screenshot import render_scene
+
+    env = Environment()
+    env.add(fig)
+    return render_scene(env, (320, 480), "iso")

@@ -190,3 +190,68 @@ def replay(recording: Recording, speed: float = 1.0) -> Iterator[dict[int, Sampl
             if delay > 0:
                 time.sleep(delay)
         yield frame
+
+
+class FrameMotion:
+    """A :class:`~jackpy.devices.flock.simulator.FlockSimulator` motion that plays a recording
+    frame by frame: the k-th record the simulator emits for a bird carries that bird's pose in
+    frame k, so the recording runs at the simulator's rate, counted in records, not in seconds.
+
+    Until :meth:`play` it holds frame ``start`` (an operator standing still for calibration);
+    after the last frame it holds the last one. ``frame`` is the lowest frame index emitted so
+    far across birds, ``done`` tells when every bird has passed the last frame.
+    """
+
+    def __init__(self, recording: Recording, start: int = 0) -> None:
+        frames = recording.frames()
+        if not frames:
+            raise DeviceError("the recording holds no frames")
+        self.birds = recording.birds
+        self.start = start
+        self.n = len(frames)
+        self._poses: dict[int, list[tuple[tuple[float, float, float], tuple[float, float, float]]]] = {}
+        last: dict[int, tuple] = {}
+        for frame in frames:
+            for b in self.birds:
+                if b in frame:
+                    last[b] = _pose_of(frame[b].record)
+                self._poses.setdefault(b, []).append(last.get(b, ((0.0, 0.0, 0.0), (0.0, 0.0, 0.0))))
+        self._count: dict[int, int] = {}
+        self._playing = False
+        self._lock = threading.Lock()
+
+    def play(self) -> None:
+        """Start advancing one frame per emitted record (per bird)."""
+        with self._lock:
+            self._count = {b: self.start for b in self.birds}
+            self._playing = True
+
+    @property
+    def frame(self) -> int:
+        with self._lock:
+            if not self._playing:
+                return self.start
+            return min(self._count.get(b, self.start) for b in self.birds)
+
+    @property
+    def done(self) -> bool:
+        return self.frame >= self.n
+
+    def __call__(self, t: float, address: int):
+        poses = self._poses.get(address)
+        if poses is None:
+            return (0.0, 0.0, 0.0), (0.0, 0.0, 0.0)
+        with self._lock:
+            if not self._playing:
+                k = self.start
+            else:
+                k = self._count.get(address, self.start)
+                self._count[address] = k + 1
+        return poses[min(k, self.n - 1)]
+
+
+def _pose_of(rec: Record) -> tuple[tuple[float, float, float], tuple[float, float, float]]:
+    pos = rec.position or (0.0, 0.0, 0.0)
+    r = rec.rotation()
+    ang = tuple(float(a) for a in np.degrees(angles_from_rotation(r))) if r is not None else (0.0, 0.0, 0.0)
+    return tuple(float(v) for v in pos), ang  # type: ignore[return-value]

@@ -85,6 +85,12 @@ def load_sensor_config(path: str | os.PathLike) -> SensorConfig:
         raise DeviceError(f"cannot read sensor configuration {name}: {exc.strerror}") from None
     except json.JSONDecodeError as exc:
         raise ParseError(exc.msg, name, exc.lineno, exc.colno) from None
+    return sensor_config_from_dict(data, name)
+
+
+def sensor_config_from_dict(data: Mapping, name: str = "<sensor configuration>") -> SensorConfig:
+    """A :class:`SensorConfig` from the JSON object of :func:`load_sensor_config` (e.g. one kept in
+    a recording's header); errors raise :class:`ParseError` naming ``name``."""
     try:
         tx = data.get("transmitter", {})
         world = _transform(tx.get("position_m", [0, 0, 0]), [0, tx.get("yaw_deg", 0.0), 0])
@@ -149,13 +155,20 @@ def _record(s: Sample | Record) -> Record:
 
 
 def calibrate(samples: Mapping[int, Sample | Record], reference: Mapping[str, np.ndarray],
-              config: SensorConfig | None = None, anchor: str = "pelvis") -> Calibration:
+              config: SensorConfig | None = None, anchor: str = "pelvis",
+              place_transmitter: bool = True) -> Calibration:
     """Calibrate from samples taken while the operator stands in a known pose.
 
     ``reference`` gives the world 4×4 pose each part's site has in that pose (e.g. from the
     figure's neutral stance). The transmitter is placed by yaw about world y plus a translation so
-    the ``anchor`` sensor lands on its reference (keeping the configured transmitter placement if
-    the anchor is missing); each part's offset then absorbs the rest.
+    the ``anchor`` sensor, carried by its configured mount offset, lands on its reference (keeping
+    the configured transmitter placement if the anchor is missing or ``place_transmitter`` is
+    False); each part's offset then absorbs the rest.
+
+    The transmitter placement is exact when the transmitter stands level (yaw only) and the
+    anchor's mount offset is known; an unknown anchor offset misplaces the transmitter by that
+    offset, which shows as errors proportional to how far each part turns from the calibration
+    pose.
     """
     config = config or default_config()
     poses = {}
@@ -168,8 +181,12 @@ def calibrate(samples: Mapping[int, Sample | Record], reference: Mapping[str, np
     if not poses:
         raise DeviceError("calibration: no sample for any configured body part")
     world = config.world_from_transmitter.copy()
-    if anchor in poses:
-        s, ref = poses[anchor], np.asarray(reference[anchor], dtype=float)
+    if anchor in poses and place_transmitter:
+        # the anchor's configured mount offset (where the waist sensor sits on the body) is
+        # honoured, so a known offset places the transmitter exactly; identity by default
+        mount = config.mount(anchor)
+        s = poses[anchor] @ (mount.offset if mount is not None else np.eye(4))
+        ref = np.asarray(reference[anchor], dtype=float)
         yaw = _heading(ref) - _heading(s)
         rot = np.eye(4)
         rot[:3, :3] = _rot(1, yaw)

@@ -1,0 +1,371 @@
+"""Live driving of a figure from Flock of Birds sensors ([SH4] §4.5; behaviors.md §5).
+
+:class:`SensorDrive` turns the latest sensor samples into goals of a :class:`BehaviorLoop`, one
+frame at a time, in the book's order:
+
+1. **pelvis**: the waist sensor's target sets the pelvis orientation goal
+   (:func:`~jackpy.behaviors.manipulation.move_pelvis` with ``rotation``) and its floor position:
+   each frame the balance point is dragged by ``pelvis_gain`` × the horizontal distance from the
+   pelvis site to its target (``move_pelvis`` with ``translation``, at most ``pelvis_max_shift`` a
+   frame), so the pelvis settles on the sensor while the COM stays the balance goal. [proposal]
+   The book roots the figure through the pelvis and sets its pose outright; jackpy keeps its feet
+   planted and balanced, so the pelvis is servoed instead. Its height follows the legs.
+2. **spine**: the neck sensor against the waist sensor gives the spine target (flexion, lateral
+   bend, axial twist; :func:`~jackpy.devices.sensors.spine_angles` measured from the calibration
+   pose), sent straight to the spine (:func:`~jackpy.behaviors.manipulation.bend_torso`), with
+   ``spine_iterations`` corrections so the base of the neck really turns by the target.
+3. **arms**: each palm sensor's target is the palm site's position + orientation goal
+   (:func:`~jackpy.behaviors.manipulation.hand_on_site`); the arm pass solves it.
+4. **COM, stepping and legs**: :meth:`BehaviorLoop.step` runs the behaviors (balance, the stepping
+   behavior when the dragged balance point nears the edge of the feet or the pelvis twists past
+   the feet) and the IK passes.
+
+Samples are read without blocking (the driver's latest-value store); a frame with no new sample
+still steps the loop (a step in progress goes on). Smoothing (one-euro, per part) is off by
+default. :meth:`SensorDrive.calibrate` captures the transmitter placement and each sensor's offset
+to its body site while the operator stands in the figure's current (neutral) pose.
+
+:func:`replay_into` drives a figure from a recording, frame by frame or at real speed.
+"""
+
+from __future__ import annotations
+
+import collections
+import time
+from collections.abc import Callable, Iterator, Mapping
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from jackpy.behaviors import manipulation as m
+from jackpy.behaviors.loop import BehaviorLoop, FrameReport
+from jackpy.behaviors.support import floor
+from jackpy.devices.flock.driver import Sample
+from jackpy.devices.recording import Recording
+from jackpy.devices.sensors import (Calibration, SensorConfig, TargetSmoother, calibrate, default_config,
+                                    sensor_targets, spine_angles)
+from jackpy.errors import DeviceError
+
+HANDS = {"left_palm": "left", "right_palm": "right"}
+
+
+@dataclass
+class DriveConfig:
+    """How sensors drive the figure. ``sensors``: which bird is on which part and where the
+    transmitter is; ``smoothing`` turns on the one-euro filter (``min_cutoff`` Hz, ``beta``,
+    ``beta_rot``); ``pelvis``/``torso``/``hands`` switch each stage; ``pelvis_gain`` and
+    ``pelvis_max_shift`` (m per frame) servo the pelvis; ``spine_iterations`` corrections of the
+    spine bend; ``place_transmitter``: calibration places the transmitter from the waist sensor
+    (else the configured placement is kept)."""
+
+    sensors: SensorConfig = field(default_factory=default_config)
+    smoothing: bool = False
+    min_cutoff: float = 1.0
+    beta: float = 0.5
+    beta_rot: float = 0.1
+    pelvis: bool = True
+    torso: bool = True
+    hands: bool = True
+    pelvis_gain: float = 0.8
+    pelvis_max_shift: float = 0.05
+    spine_iterations: int = 2
+    place_transmitter: bool = True
+
+
+@dataclass
+class DriveReport:
+    """One frame of :meth:`SensorDrive.step`.
+
+    ``frame`` counts steps; ``fresh`` the birds with a new sample this frame; ``skipped`` the
+    samples that arrived since the last frame but were overwritten before it (latest-value
+    semantics); ``targets`` the world 4x4 per part; ``errors`` the distance (m) of each driven site
+    from its target after the solve; ``spine`` the spine target (flexion, lateral, axial, rad);
+    ``arrival`` the host time (``time.perf_counter``) the newest consumed sample arrived, or None
+    for samples handed in without times of this clock; ``solved`` the time the solve ended;
+    ``step_ms`` the frame's cost; ``loop`` the behavior loop's report (None when not stepped)."""
+
+    frame: int
+    fresh: list[int]
+    skipped: int
+    targets: dict[str, np.ndarray]
+    errors: dict[str, float]
+    spine: tuple[float, float, float] | None
+    arrival: float | None
+    solved: float
+    step_ms: float
+    loop: FrameReport | None
+    notes: list[str] = field(default_factory=list)
+
+    @property
+    def latency_ms(self) -> float | None:
+        """Newest consumed sample's arrival to the end of the solve (ms), for live sources."""
+        return None if self.arrival is None else (self.solved - self.arrival) * 1e3
+
+
+@dataclass
+class DriveStatus:
+    """What a Devices panel shows: ``state`` (the driver's, or "samples"), ``calibrated``,
+    ``birds`` (bird -> part), ``rates`` (Hz per bird, from sequence numbers over the last second),
+    ``dropped`` (broken records the driver dropped), ``skipped`` (samples overwritten before a frame
+    used them), ``frames`` (steps so far), ``last_error``."""
+
+    state: str
+    calibrated: bool
+    birds: dict[int, str]
+    rates: dict[int, float]
+    dropped: int
+    skipped: int
+    frames: int
+    last_error: str | None
+
+
+SampleSource = Callable[[], Mapping[int, Sample]]
+
+
+def _source(obj: Any) -> SampleSource | None:
+    if obj is None:
+        return None
+    if hasattr(obj, "snapshot"):  # FlockDriver, LatestSamples
+        return obj.snapshot
+    if isinstance(obj, Mapping):
+        return lambda: obj
+    if callable(obj):
+        return obj
+    raise DeviceError(f"cannot read samples from a {type(obj).__name__}")
+
+
+class SensorDrive:
+    """Drives ``loop``'s figure from sensor samples.
+
+    ``source``: a :class:`~jackpy.devices.flock.driver.FlockDriver` or
+    :class:`~jackpy.devices.flock.driver.LatestSamples` (read with ``snapshot()``, never blocking),
+    a mapping bird -> sample, a callable returning one, or None (pass samples to :meth:`step`).
+    ``config``: a :class:`DriveConfig`, or a :class:`~jackpy.devices.sensors.SensorConfig` (other
+    settings default).
+    """
+
+    def __init__(self, loop: BehaviorLoop, source: Any = None,
+                 config: DriveConfig | SensorConfig | None = None) -> None:
+        if isinstance(config, SensorConfig):
+            config = DriveConfig(sensors=config)
+        self.loop = loop
+        self.config = config or DriveConfig()
+        self.driver = source if hasattr(source, "stats") else None
+        self._read = _source(source)
+        self.calibration: Calibration | None = None
+        self.smoother = (TargetSmoother(self.config.min_cutoff, self.config.beta, self.config.beta_rot)
+                         if self.config.smoothing else None)
+        a = loop.anatomy
+        self.sites: dict[str, tuple[str, str]] = {"pelvis": (a.pelvis, a.pelvis_site), "neck": tuple(a.chest)}
+        for part, side in HANDS.items():
+            if side in a.hands:
+                self.sites[part] = tuple(a.hands[side].palm)
+        self.frames = 0
+        self.skipped = 0
+        self.last_error: str | None = None
+        self._last_seq: dict[int, int] = {}
+        self._seen: dict[int, collections.deque[tuple[float, int]]] = {}
+        self._neutral: dict[str, np.ndarray] = {}
+        self._spine = np.zeros(3)
+
+    # ----- calibration ----------------------------------------------------------------------------
+    def reference_poses(self) -> dict[str, np.ndarray]:
+        """World 4x4 of each configured part's site in the figure's current posture."""
+        fig = self.loop.figure
+        return {mt.part: fig.site_world(*self.sites[mt.part]) for mt in self.config.sensors.mounts
+                if mt.part in self.sites}
+
+    def calibrate(self, samples: Mapping[int, Sample] | None = None) -> Calibration:
+        """Capture the transmitter placement and sensor offsets with the operator standing in the
+        figure's current posture (normally its neutral stance). ``samples`` default to the
+        source's latest; raises :class:`DeviceError` when a configured bird has no valid pose."""
+        samples = self._samples(samples)
+        missing = [mt.bird for mt in self.config.sensors.mounts if mt.bird not in samples]
+        if missing:
+            raise DeviceError(f"calibration: no sample yet from bird(s) {missing}")
+        ref = self.reference_poses()
+        self.calibration = calibrate(samples, ref, self.config.sensors,
+                                     place_transmitter=self.config.place_transmitter)
+        self._neutral = {p: r.copy() for p, r in ref.items()}
+        self._spine = np.zeros(3)
+        for b, s in samples.items():
+            self._last_seq[b] = s.seq
+        if self.smoother is not None:
+            self.smoother = TargetSmoother(self.config.min_cutoff, self.config.beta, self.config.beta_rot)
+        return self.calibration
+
+    @property
+    def calibrated(self) -> bool:
+        return self.calibration is not None
+
+    # ----- one frame --------------------------------------------------------------------------------
+    def _samples(self, samples: Mapping[int, Sample] | None) -> Mapping[int, Sample]:
+        if samples is not None:
+            return samples
+        if self._read is None:
+            raise DeviceError("no sample source: pass samples to step() or calibrate()")
+        return self._read()
+
+    def _account(self, samples: Mapping[int, Sample]) -> tuple[list[int], int]:
+        fresh, skipped = [], 0
+        for b, s in samples.items():
+            last = self._last_seq.get(b)
+            if last is None or s.seq != last:
+                fresh.append(b)
+                if last is not None and s.seq > last + 1:
+                    skipped += s.seq - last - 1
+                self._last_seq[b] = s.seq
+                seen = self._seen.setdefault(b, collections.deque(maxlen=256))
+                seen.append((s.time, s.seq))
+        return sorted(fresh), skipped
+
+    def step(self, samples: Mapping[int, Sample] | None = None, live: bool | None = None) -> DriveReport:
+        """Set goals from the latest samples (or ``samples``) and run one frame of the loop.
+
+        Never blocks on the device. Before :meth:`calibrate` nothing is driven and the loop is not
+        stepped (the report says so). ``live`` tells whether sample times are this process's
+        ``time.perf_counter`` (default: when read from the source)."""
+        t0 = time.perf_counter()
+        live = (samples is None) if live is None else live
+        try:
+            samples = self._samples(samples)
+        except DeviceError as exc:
+            self.last_error = str(exc)
+            raise
+        fresh, skipped = self._account(samples)
+        self.skipped += skipped
+        if self.calibration is None:
+            return DriveReport(self.frames, fresh, skipped, {}, {}, None, None, time.perf_counter(),
+                               (time.perf_counter() - t0) * 1e3, None, ["not calibrated"])
+        cfg = self.config
+        targets = sensor_targets(samples, self.calibration)
+        newest = max((samples[b].time for b in fresh), default=None)
+        if self.smoother is not None and targets:
+            ts = max(s.time for s in samples.values())
+            targets = self.smoother(targets, ts)
+        loop = self.loop
+        if fresh:
+            # 1. pelvis: orientation goal, floor position servoed through the balance point
+            pel = targets.get("pelvis")
+            if cfg.pelvis and pel is not None:
+                now = loop.figure.site_world(*self.sites["pelvis"])
+                d = cfg.pelvis_gain * floor(pel[:3, 3] - now[:3, 3])
+                n = float(np.linalg.norm(d))
+                if n > cfg.pelvis_max_shift:
+                    d *= cfg.pelvis_max_shift / n
+                m.move_pelvis(loop, rotation=pel[:3, :3], translation=np.array([d[0], 0.0, d[1]]))
+            # 2. spine from the neck against the waist, measured from the calibration pose
+            if cfg.torso and pel is not None and "neck" in targets and "neck" in self._neutral:
+                self._spine = self._bend(pel, targets["neck"])
+            # 3. arms: palm sensors are the palm sites' position + orientation goals
+            if cfg.hands:
+                for part, side in HANDS.items():
+                    if part in targets and side in loop.state.hands:
+                        m.hand_on_site(loop, side, targets[part])
+        # 4. COM, stepping and legs: the behaviors and the IK
+        report = loop.step()
+        self.frames += 1
+        fig = loop.figure
+        errors = {p: float(np.linalg.norm(fig.site_world(*self.sites[p])[:3, 3] - t[:3, 3]))
+                  for p, t in targets.items() if p in self.sites}
+        solved = time.perf_counter()
+        return DriveReport(self.frames, fresh, skipped, targets, errors,
+                           tuple(float(v) for v in self._spine) if cfg.torso else None,
+                           newest if live else None, solved, (solved - t0) * 1e3, report, list(report.notes))
+
+    def _relative(self, pelvis: np.ndarray, neck: np.ndarray) -> np.ndarray:
+        """Spine angles (flexion, lateral, axial; jackpy's spine-group signs) of ``neck`` against
+        ``pelvis``, measured from the calibration pose."""
+        p0, n0 = self._neutral["pelvis"][:3, :3], self._neutral["neck"][:3, :3]
+        a = np.eye(4)
+        b = np.eye(4)
+        a[:3, :3] = pelvis[:3, :3] @ p0.T
+        b[:3, :3] = neck[:3, :3] @ n0.T
+        flex, twist, lateral = spine_angles(a, b)
+        # spine_angles' lateral is about +z (forward); the spine group bends right for +z' = -z
+        return np.array([flex, -lateral, twist])
+
+    def _bend(self, pelvis: np.ndarray, neck: np.ndarray) -> np.ndarray:
+        """Send the spine target to the spine, then correct it so the figure's neck turns by it."""
+        loop = self.loop
+        want = self._relative(pelvis, neck)
+        theta = want.copy()
+        applied = m.bend_torso(loop, *theta)
+        for _ in range(self.config.spine_iterations):
+            fig = loop.figure
+            got = self._relative(fig.site_world(*self.sites["pelvis"]), fig.site_world(*self.sites["neck"]))
+            err = want - got
+            if float(np.max(np.abs(err))) < 1e-3:
+                break
+            theta = theta + err
+            applied = m.bend_torso(loop, *theta)
+        return np.asarray(applied, dtype=float)
+
+    # ----- status -----------------------------------------------------------------------------------
+    def status(self) -> DriveStatus:
+        """Birds, rates, dropped and skipped samples, frames and the last error (for a panel)."""
+        rates = {}
+        for b, seen in self._seen.items():
+            if len(seen) >= 2:
+                t_new, s_new = seen[-1]
+                old = [(t, s) for t, s in seen if t_new - t <= 1.0] or [seen[0]]
+                t_old, s_old = old[0] if old[0] != seen[-1] else seen[-2]
+                if t_new > t_old:
+                    rates[b] = (s_new - s_old) / (t_new - t_old)
+        drv = self.driver
+        return DriveStatus(
+            state=getattr(drv, "state", "samples") if drv is not None else "samples",
+            calibrated=self.calibrated,
+            birds={mt.bird: mt.part for mt in self.config.sensors.mounts},
+            rates=rates,
+            dropped=int(drv.stats.dropped) if drv is not None else 0,
+            skipped=self.skipped,
+            frames=self.frames,
+            last_error=(getattr(drv, "last_error", None) if drv is not None else None) or self.last_error,
+        )
+
+
+def replay_into(drive: SensorDrive, recording: Recording, speed: float = 0.0, every: int = 1,
+                calibrate_frame: int | None = 0) -> Iterator[tuple[int, DriveReport]]:
+    """Drive ``drive``'s figure from ``recording``: yields (frame index, report) per frame driven.
+
+    ``calibrate_frame``: calibrate on that frame first (the operator's neutral stance), None to
+    keep the drive's calibration. ``speed`` 0 drives every ``every``-th frame as fast as the solver
+    goes (frame by frame); ``speed`` > 0 runs against the clock (× speed) and, like a live
+    session, always takes the newest frame due, skipping those the solver had no time for.
+    """
+    frames = recording.frames()
+    if not frames:
+        raise DeviceError("the recording holds no samples")
+    if every < 1:
+        raise DeviceError("every must be >= 1")
+    # sequence numbers per bird follow the frame index, so skipped frames are counted
+    seqd = [{b: Sample(b, s.record, s.time, k) for b, s in fr.items()} for k, fr in enumerate(frames)]
+    merged: list[dict[int, Sample]] = []
+    cur: dict[int, Sample] = {}
+    for fr in seqd:  # a bird missing from a frame keeps its previous sample
+        cur = {**cur, **fr}
+        merged.append(cur)
+    if calibrate_frame is not None:
+        drive.calibrate(merged[min(calibrate_frame, len(merged) - 1)])
+    if speed <= 0:
+        for k in range(0, len(merged), every):
+            yield k, drive.step(merged[k], live=False)
+        if (len(merged) - 1) % every:
+            yield len(merged) - 1, drive.step(merged[-1], live=False)
+        return
+    times = np.array([min(s.time for s in fr.values()) for fr in frames])
+    start = time.perf_counter()
+    last = -1
+    while last < len(merged) - 1:
+        due = int(np.searchsorted(times, (time.perf_counter() - start) * speed, side="right")) - 1
+        if due <= last:
+            wait = times[last + 1] / speed - (time.perf_counter() - start)
+            time.sleep(max(0.0, min(wait, 0.05)))
+            continue
+        last = due
+        yield due, drive.step(merged[due], live=False)
+
+
+__all__ = ["DriveConfig", "DriveReport", "DriveStatus", "SensorDrive", "replay_into"]
