@@ -91,15 +91,22 @@ void main() {
 
 
 class OffscreenRenderer:
-    """Render :class:`Body` lists to arrays at ``size`` = (width, height) pixels."""
+    """Render :class:`Body` lists to arrays at ``size`` = (width, height) pixels.
 
-    def __init__(self, size: tuple[int, int] = (512, 512)) -> None:
+    ``ctx``: an existing moderngl context to render with (e.g. the workbench window's, where a second
+    EGL context cannot live beside a GLX window); it must be current on the calling thread and is
+    not released by :meth:`release`. By default a standalone EGL context is made and owned."""
+
+    def __init__(self, size: tuple[int, int] = (512, 512), ctx=None) -> None:
         import moderngl
 
-        try:
-            self.ctx = moderngl.create_standalone_context(backend="egl")
-        except Exception as exc:  # no EGL/GPU driver: one clear line
-            raise JackpyError(f"offscreen rendering is unavailable (moderngl EGL context: {exc})") from None
+        self._owns_ctx = ctx is None
+        if ctx is None:
+            try:
+                ctx = moderngl.create_standalone_context(backend="egl")
+            except Exception as exc:  # no EGL/GPU driver: one clear line
+                raise JackpyError(f"offscreen rendering is unavailable (moderngl EGL context: {exc})") from None
+        self.ctx = ctx
         self.size = size
         self._shaded = self.ctx.program(vertex_shader=_VS, fragment_shader=_FS_SHADED)
         self._ids = self.ctx.program(vertex_shader=_VS, fragment_shader=_FS_ID)
@@ -107,8 +114,17 @@ class OffscreenRenderer:
         self._cache: dict[int, tuple[Mesh, object, dict]] = {}
 
     def release(self) -> None:
-        """Free the GL context and everything in it."""
-        self.ctx.release()
+        """Free the GL context and everything in it (only this renderer's objects on a borrowed context)."""
+        if self._owns_ctx:
+            self.ctx.release()
+            return
+        for _, vbo, vaos in self._cache.values():
+            for vao in vaos.values():
+                vao.release()
+            vbo.release()
+        self._cache.clear()
+        for obj in (self._fbo, *self._fbo.color_attachments, self._fbo.depth_attachment, self._shaded, self._ids):
+            obj.release()
 
     def _geometry(self, body: Body, program) -> object:
         key = id(body.mesh)

@@ -182,7 +182,8 @@ def _png(rgb: np.ndarray) -> bytes:
 
 def _pictures(renderer: OffscreenRenderer, wp: Workplace, figure: Figure, colours: dict[str, np.ndarray],
               ws, ev, pictures: dict[str, bytes], tag: str) -> None:
-    env_bodies = [Body(b.name, b.mesh, b.model, tuple(wp.env.figures[b.name.split(".")[0]].colour) + (1.0,))
+    env_bodies = [Body(b.name, b.mesh, b.model,
+                       tuple(getattr(wp.env.figures[b.name.split(".")[0]], "colour", b.colour[:3]))[:3] + (1.0,))
                   for b in environment_bodies(wp.env)]
     fig_bodies = figure_bodies(figure)
     for b in fig_bodies:
@@ -210,32 +211,43 @@ def _pictures(renderer: OffscreenRenderer, wp: Workplace, figure: Figure, colour
 def write_report(wp: Workplace, opts: Options, out_dir: str | Path,
                  make_figure: Callable[[str, float], Figure] = _human,
                  strength_table: Callable[[Figure], Any] = _strength_table,
-                 render: bool = True) -> dict[str, Any]:
+                 render: bool = True, renderer: OffscreenRenderer | None = None,
+                 progress: Callable[[float, str], None] | None = None) -> dict[str, Any]:
     """Analyse every figure size of ``opts`` and write ``report.html``, ``results.json``,
-    ``results.csv`` and the pictures into ``out_dir`` (created; files written atomically)."""
+    ``results.csv`` and the pictures into ``out_dir`` (created; files written atomically).
+
+    ``renderer``: render with this one (``PICTURE_SIZE``-sized, not released here) instead of a new
+    EGL one (the workbench passes one on its window's context). ``progress(fraction, what)`` is
+    called before each figure and when the files are written."""
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
-    renderer = None
-    if render:
+    own_renderer = render and renderer is None
+    if own_renderer:
         renderer = OffscreenRenderer(PICTURE_SIZE)
+    elif not render:
+        renderer = None
     pictures: dict[str, bytes] = {}
     results = {"scene": str(wp.path) if wp.path else None, "load_kg": opts.load_kg, "hand": opts.hand,
                "figures": []}
     try:
-        for sex, pct in opts.figures:
+        for k, (sex, pct) in enumerate(opts.figures):
+            if progress is not None:
+                progress(k / max(len(opts.figures), 1), f"{sex} {pct:g}%")
             fig = make_figure(sex, pct)
             tag = f"{sex}{pct:g}"
             r = analyse_figure(wp, fig, opts, renderer, strength_table, pictures, tag)
             r.update({"sex": sex, "percentile": pct, "tag": tag})
             results["figures"].append(r)
     finally:
-        if renderer is not None:
+        if own_renderer and renderer is not None:
             renderer.release()
     for name, data in pictures.items():
         atomic_write_bytes(out / name, data)
     atomic_write_text(out / "results.json", json.dumps(results, indent=1, default=_json_default) + "\n")
     atomic_write_text(out / "results.csv", _csv(results))
     atomic_write_text(out / "report.html", _html(results, pictures))
+    if progress is not None:
+        progress(1.0, "written")
     return results
 
 
