@@ -47,8 +47,11 @@ class HandsParams:
     lean_weight: float = param(0.5, "weight of an out-of-reach hand goal on the body", "", (0.0, 1e4))
     track_arm: bool = param(True, "while translated, the palm keeps its region's rule as the arm swings "
                             "(fingers along the shoulder-to-hand line), so the goal stays reachable")
-    orientation_level: int = param(1, "priority level of the hand orientation in the arm pass (position is 0)",
-                                   "", (0, 3))
+    orientation_level: int = param(1, "priority level of an orientation the user gave (rotate hand, hand on "
+                                   "site): below the position (0), so an unreachable orientation never "
+                                   "pulls the palm off its point", "", (0, 3))
+    rules_level: int = param(0, "priority level of the orientation the palm rules pick (reachable by "
+                             "construction, so weighed with the position: cheaper)", "", (0, 3))
     lean_rate: float = param(0.01, "balance-point shift per frame towards an out-of-reach goal", "cm",
                              (0.0, 0.1))
 
@@ -144,7 +147,8 @@ class Hands(BehaviorBase):
             frame.arms[side].append((Position(palm, hs.goal, weight=p.weight, name=f"hand {side}"), 0))
             if hs.orient:
                 frame.arms[side].append((Orientation(palm, hs.goal[:3, :3], weight=p.orientation_weight,
-                                                     name=f"hand frame {side}"), p.orientation_level))
+                                                     name=f"hand frame {side}"),
+                                        p.rules_level if hs.rules and p.orientation_rules else p.orientation_level))
             if hs.lean and self._beyond_reach(frame, side, hs.goal[:3, 3]):
                 frame.body.append((Position(palm, hs.goal, weight=p.lean_weight, name=f"lean {side}"), 1))
 
