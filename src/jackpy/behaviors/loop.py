@@ -30,6 +30,7 @@ from jackpy.behaviors.state import BehaviorState, FootState, HandState
 from jackpy.behaviors.support import BalanceFrame, convex_hull, floor, yaw_of
 from jackpy.ik import Problem, solve
 from jackpy.ik.goals import Aim, CentreOfMass, Goal, Orientation, Plane, Position
+from jackpy.ik.goals.base import Context
 from jackpy.peabody.kinematics import FKResult
 from jackpy.peabody.model import Figure
 
@@ -421,9 +422,32 @@ class BehaviorLoop:
         ps = self.passes[kind]
         tol = min(ps.tol_position, self.tol_position) if kind == "body" else ps.tol_position
         tol_angle = min(ps.tol_angle, self.passes["head"].tol_angle) if which == "limbs" else ps.tol_angle
+        held = self._held(problem, tol, tol_angle)
+        if held is not None:
+            return held
         result = solve(problem, max_iterations=min(ps.iterations, self.max_iterations), tol_position=tol,
                        tol_angle=tol_angle)
         return [(g.metres, g.degrees) for g in result.goals]
+
+    def _held(self, problem: Problem, tol: float, tol_angle: float) -> list[tuple[float, float]] | None:
+        """Each goal's residual at the current posture if every goal is already met, else None.
+
+        Checked on the cached forward pass without Jacobian columns (no joint-group derivatives),
+        so a pass whose goals still hold costs almost nothing. The balance goal counts as met within
+        half the COM loop's tolerance; the solve, when it runs, still drives it to ``tol``, which
+        leaves slack for the next frames' small arm motions.
+        """
+        comp = problem.compile()
+        fk, _ = self.posture()
+        ctx = Context(comp.kin, fk, np.zeros(0, dtype=int))
+        out = []
+        for g, _ in comp.entries:
+            e = g.evaluate(ctx)
+            limit = 0.5 * self.com_tolerance if isinstance(g, CentreOfMass) else tol
+            if e.metres > limit or e.degrees > tol_angle:
+                return None
+            out.append((e.metres, e.degrees))
+        return out
 
     def _pass(self, goals: list[tuple[Goal, int]], which: str) -> tuple[float, float]:
         """Solve one pass; returns the worst residual (m, deg)."""
