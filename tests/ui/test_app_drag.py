@@ -59,12 +59,17 @@ def test_drag_right_hand_20cm_along_x_then_undo(renderer):
     h0 = fig.site_world(*site.split("."))[:3, 3].copy()
     target = h0 + [0.2, 0.0, 0.0]
     p0, p1 = app.world_to_pixel(h0), app.world_to_pixel(target)
-    assert app.pick(*p0) is not None and app.pick(*p0).segment.startswith("palm")
+    from jackpy.ui.app import effector_segments
+
+    hit = app.pick(*p0)  # the palm centre, or a thumb in front of it: both grab the right hand
+    assert hit is not None and effector_segments(fig, eff)[hit.segment] == "right_hand"
     drag(app, p0, p1)
     h1 = fig.site_world(*site.split("."))[:3, 3]
     assert np.linalg.norm(h1 - target) < 0.01
-    for r, w in feet0.items():
+    for r, w in feet0.items():  # planted: neither moves nor turns
         assert np.allclose(fig.site_world(*eff[r].split(".")), w, atol=1e-6)
+    heels0 = {s: fig.site_world(f"{s}_foot", "heel") for s in ("left", "right")}
+    assert all(np.allclose(h, fig.site_world(f"{s}_foot", "heel"), atol=1e-6) for s, h in heels0.items())
     assert np.all(fig.q >= fig.lower - 1e-9) and np.all(fig.q <= fig.upper + 1e-9)
     app.on_key(ord("Z"), 0, PRESS, MOD_CONTROL)
     assert np.array_equal(fig.q, q0)
@@ -88,11 +93,12 @@ def test_empty_space_left_drag_orbits_camera(renderer):
 def test_control_drag_stops_joint_at_limit_while_wheel_turns(renderer):
     app = make_app(renderer)
     fig = app.figure_of_interest()
-    joint = fig.joint("elbow_right")
+    joint = fig.joint("right_elbow")
     lo, hi = joint.dofs[0].lower, joint.dofs[0].upper
     kin = fig.kinematics()
-    W_ = kin.forward(fig.q, fig.location).segments[kin.segment_index["forearm_right"]]
-    mid = (W_ @ np.array([0, -0.13, 0, 1.0]))[:3]
+    W_ = kin.forward(fig.q, fig.location).segments[kin.segment_index["right_forearm"]]
+    mid = (W_ @ np.array([0, -0.04, 0, 1.0]))[:3]
+    assert app.pick(*app.world_to_pixel(mid)).segment == "right_forearm"
     centre = (W_ @ np.array([0, 0, 0, 1.0]))[:3]
     app.on_cursor_pos(*app.world_to_pixel(mid))
     app.on_mouse_button(MOUSE_LEFT, PRESS, MOD_CONTROL)  # CONTROL + left: rotate about x
@@ -100,7 +106,7 @@ def test_control_drag_stops_joint_at_limit_while_wheel_turns(renderer):
     # crank the wheel (in the y-z plane through the elbow) a long way round
     angles = np.linspace(0, 1.8 * np.pi, 60)
     for a in angles:
-        p = centre + 0.13 * np.array([0.0, -np.cos(a), np.sin(a)])
+        p = centre + 0.04 * np.array([0.0, -np.cos(a), np.sin(a)])
         app.on_cursor_pos(*app.world_to_pixel(p + [0.0, 0.0, 0.0]))
         app.step()
         v = joint.displacement[0]
@@ -110,3 +116,27 @@ def test_control_drag_stops_joint_at_limit_while_wheel_turns(renderer):
     app.on_mouse_button(MOUSE_LEFT, RELEASE, MOD_CONTROL)
     app.undo()
     assert joint.displacement[0] == 0.0
+
+
+def test_default_scene_is_the_standard_human_beside_chair_and_table(renderer):
+    app = make_app(renderer)
+    fig = app.figure_of_interest()
+    assert fig.name == "male_p50" and len(fig.segments) == 74
+    assert {"chair", "worktable"} <= set(app.env.figures)
+    assert fig.name in app.loops  # the behaviors drive it
+    from jackpy.body.human import support_height
+
+    assert abs(support_height(fig)) < 1e-9  # standing on the floor
+    head = fig.site_world("head", "view")[:3, 3]
+    assert app.pick(*app.world_to_pixel(head)).segment == "head"
+
+
+def test_plain_ik_fallback_drags_the_hand_too(renderer):
+    app = make_app(renderer)
+    app.settings.behaviors = False
+    fig, site = hand(app)
+    h0 = fig.site_world(*site.split("."))[:3, 3].copy()
+    target = h0 + [-0.1, 0.0, 0.0]  # the left button drags along x
+    drag(app, app.world_to_pixel(h0), app.world_to_pixel(target), frames_after=60)
+    assert app.last_report is None  # no behavior frame ran
+    assert np.linalg.norm(fig.site_world(*site.split("."))[:3, 3] - target) < 0.01

@@ -17,8 +17,10 @@ def posed_app() -> App:
     fig = app.figure_of_interest()
     rng = np.random.default_rng(3)
     fig.q = np.clip(rng.normal(0.0, 0.3, fig.ndof), fig.lower, fig.upper)
-    g = app.ensure_goal(fig, "palm_right.tip", "position")
-    g.weight, g.priority, g.chain = 2.5, 1, "shoulder_right"
+    for side in ("left", "right"):  # the forearm twist joints move together (a linear group)
+        fig.groups[f"{side}_forearm"].set_angles(fig, np.array([0.3]))
+    g = app.ensure_goal(fig, "right_palm.palm_centre", "position")
+    g.weight, g.priority, g.chain = 2.5, 1, "right_shoulder"
     app.settings.literal_grab = True
     app.camera.yaw = 0.4
     return app
@@ -36,8 +38,11 @@ def test_save_and_reopen_restores_posture_goals_and_settings(tmp_path):
         assert np.array_equal(other.env.figure(name).q, fig.q)
         assert np.array_equal(other.env.figure(name).location, fig.location)
     assert [g.key for g in other.goals] == [g.key for g in app.goals]
-    g = other.goal(f"{app.figure_of_interest().name}:palm_right.tip")
-    assert (g.weight, g.priority, g.chain) == (2.5, 1, "shoulder_right")
+    g = other.goal(f"{app.figure_of_interest().name}:right_palm.palm_centre")
+    assert (g.weight, g.priority, g.chain) == (2.5, 1, "right_shoulder")
+    # the generated human comes back as the standard human: groups, body specification, behaviors
+    human = other.figure_of_interest()
+    assert "spine" in human.groups and human.body_spec.percentile == 50 and human.name in other.loops
     assert other.settings.literal_grab and other.camera.yaw == pytest.approx(0.4)
     # the .env alone (without the sidecar) also carries the posture, to its text precision
     session.sidecar_path(path).unlink()
@@ -49,7 +54,11 @@ def test_save_and_reopen_restores_posture_goals_and_settings(tmp_path):
 
 def test_save_leaves_no_temporary_files(tmp_path):
     session.save_session(posed_app(), tmp_path / "a.env")
-    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.env", "a.jackpy.json"]
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["a.env", "a.jackpy.json", "a_psurf"]
+    # the generated human's surfaces, one file per segment, nothing half-written
+    files = sorted(p.name for p in (tmp_path / "a_psurf" / "male_p50").iterdir())
+    assert len(files) == sum(s.psurf is not None for s in posed_app().figure_of_interest().segments.values())
+    assert all(f.endswith(".pss") for f in files)
 
 
 def test_malformed_sidecar_is_a_session_error(tmp_path):

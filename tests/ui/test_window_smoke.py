@@ -41,7 +41,7 @@ def test_window_draws_view_and_panels(request):
     win = Window(app, "jackpy smoke", (900, 640), visible=False)
     try:
         fig = app.figure_of_interest()
-        app.select(SegmentPick(fig.name, "forearm_right"))
+        app.select(SegmentPick(fig.name, "right_forearm"))
         for _ in range(3):
             win.frame()
         pixels = np.frombuffer(win.ctx.screen.read(components=3), np.uint8).reshape(640, 900, 3)

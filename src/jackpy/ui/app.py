@@ -23,12 +23,16 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from jackpy.behaviors import BehaviorLoop, FrameReport
+from jackpy.behaviors import manipulation
+from jackpy.behaviors.anatomy import human_anatomy
 from jackpy.ik.goals import Goal, Orientation, Position, PositionOrientation
 from jackpy.ik.problem import Problem
 from jackpy.ik.result import ITERATION_LIMIT
 from jackpy.ik.solver import solve as ik_solve
 from jackpy.peabody import Environment, Figure
 from jackpy.peabody.transforms import rigid_inverse
+from jackpy.ui.analysis_overlays import AnalysisState
 from jackpy.ui.camera import OrbitCamera, navigation_action, NavAction
 from jackpy.ui.manipulator import Manipulator
 from jackpy.ui.scene_view import GoalPick, Overlay, SceneView, SegmentPick, is_object
@@ -49,13 +53,14 @@ HAND_ROLES = ("right_hand", "left_hand")
 FOOT_ROLES = ("right_foot", "left_foot")
 
 EFFECTOR_SITES: dict[str, tuple[str, ...]] = {
-    # role: candidate "segment.site" names, standard human first, then the synthetic tree
-    "right_hand": ("right_palm.palm_center", "right_palm.distal", "palm_right.tip"),
-    "left_hand": ("left_palm.palm_center", "left_palm.distal", "palm_left.tip"),
-    "right_foot": ("right_foot.sole", "right_foot.heel", "foot_right.tip"),
-    "left_foot": ("left_foot.sole", "left_foot.heel", "foot_left.tip"),
-    "head": ("head.top", "head.tip"),
-    "pelvis": ("pelvis.base", "lower_torso.proximal"),
+    # role: candidate "segment.site" names, the standard human's (docs/body.md) first, then the
+    # synthetic tree's (jackpy.peabody.synthetic.human_like_tree)
+    "right_hand": ("right_palm.palm_centre", "palm_right.tip"),
+    "left_hand": ("left_palm.palm_centre", "palm_left.tip"),
+    "right_foot": ("right_foot.ball", "right_foot.heel", "foot_right.tip"),
+    "left_foot": ("left_foot.ball", "left_foot.heel", "foot_left.tip"),
+    "head": ("head.view", "head.tip"),
+    "pelvis": ("pelvis.centre", "lower_torso.proximal"),
 }
 """The end effectors the operator grabs, by role; the first existing site of each role is used."""
 
@@ -75,6 +80,17 @@ class Settings:
     gizmo_local: bool = False
     snap_translate_m: float = 0.05
     snap_rotate_deg: float = 15.0
+    behaviors: bool = True
+    """Drags of a human's hands, feet, pelvis and head go through the behaviors (balance, planted
+    feet, stepping, as in Jack); off: plain IK on the workbench goals."""
+    hand_lean: bool = True
+    """A dragged hand beyond the arm's reach bends the body and shifts the weight (then steps)."""
+    head_drag: str = "head"
+    """What a head drag moves: ``"head"`` (neck fixates the point ahead) or ``"eyes"`` (eyes, then head)."""
+    feet_hold: bool = True
+    """Planted feet hold their full orientation (Jack's "hold"); off: they may pivot about the ball."""
+    settle_frames: int = 60
+    """Behavior frames after a release before the solve stops even if the posture still creeps."""
 
 
 @dataclass
@@ -111,7 +127,7 @@ class Snapshot:
     (rescale, import); otherwise ``None``.
     """
 
-    postures: dict[str, tuple[np.ndarray, np.ndarray]]
+    postures: dict[str, tuple[np.ndarray, np.ndarray, tuple[str, str] | None]]
     goals: list[GoalEntry]
     figures: dict[str, Figure] | None = None
 
@@ -137,9 +153,11 @@ class GoalTarget:
 
     def apply(self, M: np.ndarray) -> None:
         g = self.goal
+        before = g.target.copy()
         g.manip = np.array(M, float)
         g.target = g.manip.copy()
         g.target[:3, :3] = g.manip[:3, :3] @ g.offset
+        self.app.drive_behaviors(g, before)
         self.app.goals_changed()
 
     def end_primitive(self) -> None:
@@ -166,6 +184,7 @@ class FigureTarget:
             if g.figure == self.figure.name:
                 g.target = delta @ g.target
                 g.manip = delta @ g.manip
+        self.app.sync_behaviors(self.figure.name)
         self.app.goals_changed()
 
     def end_primitive(self) -> None:
@@ -205,6 +224,10 @@ class JointRotation:
 
 
 # ---------------------------------------------------------------------- IK
+SETTLED_DQ = 1e-6
+"""A behavior frame that moves no DOF more than this (rad or m) ends the solve."""
+LOOK_DISTANCE = 1.0
+"""A head drag fixates the point this far (m) ahead of the dragged view frame."""
 ITERATIONS_PER_CALL = 15
 """Solver iterations between time-box checks."""
 
@@ -330,6 +353,8 @@ class App:
         self.dirty = False
         self.needs_solve = False
         self.stats = FrameStats()
+        self.analysis = AnalysisState()
+        """Analysis panel choices and results, live strength/clearance, overlays (analysis_overlays)."""
         self.on_log: Callable[[str], None] | None = None
         self._cursor = (0.0, 0.0)
         self._buttons: set[int] = set()
@@ -338,6 +363,10 @@ class App:
         self._drag_snapshot: Snapshot | None = None
         self._edit_snapshot: Snapshot | None = None
         self._drag_changed = False
+        self.loops: dict[str, BehaviorLoop] = {}
+        """The behavior loop of each standard human in the scene, by figure name."""
+        self._settle = 0
+        self.last_report: FrameReport | None = None
         self.set_environment(env)
 
     # ------------------------------------------------------------------ scene
@@ -357,6 +386,7 @@ class App:
                         goals.append(self._new_goal(fig, eff[role], "position+orientation"))
         self.goals = goals
         self.needs_solve = False
+        self.make_loops()
         self.frame_all()
 
     def frame_all(self) -> None:
@@ -406,6 +436,7 @@ class App:
 
     # ------------------------------------------------------------------ notifications
     def goals_changed(self) -> None:
+        self._settle = 0
         self.needs_solve = True
         self.dirty = True
         self._drag_changed = True
@@ -425,7 +456,7 @@ class App:
     # ------------------------------------------------------------------ undo
     def capture(self, structural: bool = False) -> Snapshot:
         """The current undoable state (whole figures too when ``structural``)."""
-        postures = {n: (f.q.copy(), f.location.copy()) for n, f in self.env.figures.items()}
+        postures = {n: (f.q.copy(), f.location.copy(), f.root) for n, f in self.env.figures.items()}
         figures = {n: copy.deepcopy(f) for n, f in self.env.figures.items()} if structural else None
         return Snapshot(postures, copy.deepcopy(self.goals), figures)
 
@@ -434,15 +465,23 @@ class App:
         if snap.figures is not None:
             for name, fig in snap.figures.items():
                 self.env.figures[name] = copy.deepcopy(fig)
-        for name, (q, loc) in snap.postures.items():
+        for name, (q, loc, root) in snap.postures.items():
             fig = self.env.figures.get(name)
             if fig is not None:
+                if fig.root != root:
+                    fig.root = root
+                    fig.topology_changed()
                 fig.q = q.copy()
                 fig.location = loc.copy()
         self.goals = copy.deepcopy(snap.goals)
         self.manipulator.attach(None)
         self.needs_solve = False
         self.dirty = True
+        if snap.figures is not None:
+            self.make_loops()
+        else:
+            for name in list(self.loops):
+                self.sync_behaviors(name)
 
     def command(self, label: str, action: Callable[[], object], structural: bool = False) -> None:
         """Run ``action`` as one undoable step."""
@@ -606,6 +645,9 @@ class App:
         if self._drag_snapshot is not None:
             self.manipulator.finish()
             if self._drag_changed:
+                self.end_behavior_drag()
+                self.needs_solve = True
+            if self._drag_changed:
                 self.undo_stack.push("drag", self._drag_snapshot)
             self._drag_snapshot = None
 
@@ -648,11 +690,115 @@ class App:
 
     # ------------------------------------------------------------------ frame
     def solve(self) -> tuple[int, bool]:
-        """Solve IK for every figure with enabled goals, within the time box.
+        """Solve for every figure with enabled goals, within the time box.
 
-        Returns (iterations, settled): settled when every goal is met or the solver stalls.
+        Humans with a behavior loop (when ``settings.behaviors``) run :meth:`BehaviorLoop.step`
+        frames; every other figure is solved by plain IK on its goals. Returns (iterations or
+        behavior frames, settled): settled when the goals are met or the solve stalls.
         """
-        return solve_goals(self.env, self.goals, self.settings.ik_time_budget_s)
+        start = time.perf_counter()
+        budget = self.settings.ik_time_budget_s
+        count, settled = 0, True
+        driven = self.behavior_figures()
+        for name in driven:
+            loop, fig = self.loops[name], self.env.figures[name]
+            while True:
+                q0 = fig.q.copy()
+                self.last_report = loop.step()
+                count += 1
+                self._settle += 1
+                moved = float(np.max(np.abs(fig.q - q0), initial=0.0))
+                if moved < SETTLED_DQ or self._settle >= self.settings.settle_frames:
+                    break
+                if time.perf_counter() - start >= budget:
+                    settled = False
+                    break
+        rest = [g for g in self.goals if g.figure not in driven]
+        if rest:
+            it, ok = solve_goals(self.env, rest, max(0.0, budget - (time.perf_counter() - start)))
+            count, settled = count + it, settled and ok
+        return count, settled
+
+    # ------------------------------------------------------------------ behaviors
+    def make_loops(self) -> None:
+        """A behavior loop for every standard human in the scene (feet planted where they stand)."""
+        self.loops = {}
+        for fig in self.env.figures.values():
+            if is_object(fig):
+                continue
+            try:
+                anatomy = human_anatomy(fig)
+            except Exception:  # not the standard human's structure: plain IK only
+                continue
+            q, loc, root = fig.q.copy(), fig.location.copy(), fig.root
+            try:
+                self.loops[fig.name] = BehaviorLoop(fig, anatomy)
+            except Exception as exc:  # noqa: BLE001 - an odd figure: plain IK, and say why
+                fig.root, fig.q, fig.location = root, q, loc
+                fig.topology_changed()
+                self.info(f"{fig.name}: no behaviors ({exc})")
+                continue
+            self.sync_behaviors(fig.name)
+
+    def behavior_figures(self) -> set[str]:
+        """Names of the figures whose goals the behaviors solve now."""
+        return set(self.loops) if self.settings.behaviors else set()
+
+    def role_of(self, goal: GoalEntry) -> str | None:
+        """The end-effector role (``right_hand`` ...) of a goal's site, if it is one."""
+        fig = self.env.figures.get(goal.figure)
+        if fig is None:
+            return None
+        return next((r for r, s in find_effectors(fig).items() if s == goal.site), None)
+
+    def sync_behaviors(self, name: str) -> None:
+        """Restart figure ``name``'s behavior state from its posture and its hand goals (after
+        undo, a figure move, a rescale, opening a scene)."""
+        loop = self.loops.get(name)
+        if loop is None:
+            return
+        loop.reset_state()
+        for side in loop.state.feet:
+            manipulation.set_foot_behavior(loop, side, mode="hold" if self.settings.feet_hold else "pivot")
+        for g in self.goals:
+            role = self.role_of(g) if g.figure == name else None
+            if role in HAND_ROLES and g.enabled:
+                side = role.split("_")[0]
+                manipulation.move_hand(loop, side, position=g.target[:3, 3], rotation=g.target[:3, :3],
+                                       lean=self.settings.hand_lean)
+        self._settle = 0
+
+    def drive_behaviors(self, goal: GoalEntry, before: np.ndarray) -> None:
+        """A dragged effector goal moved from ``before`` to ``goal.target``: tell the behaviors
+        through Jack's manipulation commands (move_hand, move_foot, move_pelvis, move_head/eyes)."""
+        loop = self.loops.get(goal.figure) if goal.figure in self.behavior_figures() else None
+        role = self.role_of(goal) if loop is not None else None
+        if role is None:
+            return
+        t = goal.target
+        rotating = not np.allclose(before[:3, :3], t[:3, :3], atol=1e-12)
+        side = role.split("_")[0]
+        if role in HAND_ROLES:
+            manipulation.move_hand(loop, side, position=t[:3, 3], rotation=t[:3, :3] if rotating else None,
+                                   lean=self.settings.hand_lean)
+        elif role in FOOT_ROLES:
+            manipulation.move_foot(loop, side, position=t[:3, 3], rotation=t[:3, :3] if rotating else None)
+        elif role == "pelvis":
+            manipulation.move_pelvis(loop, rotation=t[:3, :3] if rotating else None,
+                                     translation=None if rotating else t[:3, 3] - before[:3, 3])
+        elif role == "head":
+            point = t[:3, 3] + LOOK_DISTANCE * t[:3, 2]
+            if self.settings.head_drag == "eyes":
+                manipulation.move_eyes(loop, point)
+            else:
+                manipulation.move_head(loop, point)
+        self._settle = 0
+
+    def end_behavior_drag(self) -> None:
+        """Mouse release: :func:`~jackpy.behaviors.manipulation.end_drag` on every loop."""
+        for loop in self.loops.values():
+            manipulation.end_drag(loop)
+        self._settle = 0
 
     def step(self) -> FrameStats:
         """One frame after the input handlers ran: solve if goals changed, then draw."""
@@ -676,4 +822,6 @@ class App:
         self.view.upload(self.renderer, self.env)
         scene = self.view.build(self.env, self.goals, self.settings.skeleton, self.selection,
                                 Overlay(triads, lines), self.settings.show_floor)
+        self.analysis.decorate(self, scene)
         self.renderer.render(scene, self.camera.view_matrix(), self.camera.projection_matrix(self.renderer.aspect))
+        self.analysis.after_draw(self)

@@ -16,6 +16,8 @@ the last run crashed, and the workbench offers to recover it.
 
 from __future__ import annotations
 
+import copy
+import functools
 import json
 import os
 from dataclasses import asdict, fields
@@ -26,8 +28,8 @@ import numpy as np
 
 import jackpy
 from jackpy.atomic import atomic_write_text
-from jackpy.errors import SessionError
-from jackpy.peabody import Environment
+from jackpy.errors import JackpyError, SessionError
+from jackpy.peabody import Environment, Figure
 from jackpy.peabody.reader import read_environment, read_figures
 from jackpy.peabody.writer import write_environment
 from jackpy.scene.cad import CADObject, add_cad, import_cad
@@ -48,15 +50,26 @@ def figures_dir() -> Path | None:
     return None
 
 
+@functools.lru_cache(maxsize=4)
+def _standard_human(sex: str, percentile: float) -> Figure:
+    from jackpy.body.human import make_human
+
+    return make_human(sex, percentile)
+
+
+def standard_human(sex: str = "male", percentile: float = 50.0) -> Figure:
+    """A fresh copy of ``make_human(sex, percentile)`` (generated once per process)."""
+    return copy.deepcopy(_standard_human(sex, float(percentile)))
+
+
 def default_scene() -> tuple[Environment, Path | None]:
-    """The scene ``jackpy`` opens with: a standing figure, a chair and a work table.
+    """The scene ``jackpy`` opens with: the 50th-percentile male standing on the floor at the
+    origin (facing +z), a chair on his right and a work table on his left.
 
     Returns the environment and the directory its included files are relative to.
     """
-    from jackpy.peabody.synthetic import human_like_tree
-
     env = Environment()
-    env.add(human_like_tree())
+    env.add(standard_human("male", 50.0))
     base = figures_dir()
     if base is not None:
         for name, place in (("worktable.fig", (1.2, 0.0, 0.1)), ("chair.fig", (-1.0, 0.0, 0.0))):
@@ -84,9 +97,15 @@ def session_dict(app: "App") -> dict[str, Any]:
     figs: dict[str, Any] = {}
     for name, fig in app.env.figures.items():
         entry: dict[str, Any] = {"q": _m(fig.q), "location": _m(fig.location)}
+        if fig.root is not None:
+            entry["root"] = list(fig.root)
         if isinstance(fig, CADObject):
             s = fig.settings
             entry["cad"] = {"source": str(Path(s.source).resolve()), "units": s.units, "up": s.up}
+        spec = getattr(fig, "body_spec", None)
+        if spec is not None:
+            entry["human"] = {"sex": spec.sex, "percentile": float(spec.percentile),
+                              "population": spec.population}
         figs[name] = entry
     return {
         "format": FORMAT, "version": VERSION,
@@ -94,10 +113,19 @@ def session_dict(app: "App") -> dict[str, Any]:
         "camera": {"target": _m(cam.target), "distance": cam.distance, "yaw": cam.yaw, "pitch": cam.pitch,
                    "orthographic": cam.orthographic},
         "figures": figs,
+        "behaviors": {name: {b.name: {"enabled": bool(b.enabled), "params": _params(b.params)}
+                             for b in loop.behaviors} for name, loop in app.loops.items()},
         "goals": [{"key": g.key, "figure": g.figure, "site": g.site, "kind": g.kind, "target": _m(g.target),
                    "enabled": g.enabled, "weight": g.weight, "priority": g.priority, "chain": g.chain,
                    "manip": _m(g.manip), "offset": _m(g.offset)} for g in app.goals],
     }
+
+
+def _params(params: Any) -> dict[str, Any]:
+    out = {}
+    for k, v in asdict(params).items():
+        out[k] = v.tolist() if isinstance(v, np.ndarray) else (float(v) if isinstance(v, np.floating) else v)
+    return out
 
 
 def _matrix(values: Any, shape: tuple[int, ...], where: str) -> np.ndarray:
@@ -115,7 +143,7 @@ def save_session(app: "App", path: str | os.PathLike[str], *, remember: bool = T
     if path.suffix.lower() != ".env":
         path = path.with_suffix(".env")
     path.parent.mkdir(parents=True, exist_ok=True)
-    env = app.env
+    env = _writable(app.env, path, app.scene_dir)
     write_environment(path, env, source_dir=app.scene_dir)
     atomic_write_text(sidecar_path(path), json.dumps(session_dict(app), indent=1) + "\n")
     if remember:
@@ -123,6 +151,44 @@ def save_session(app: "App", path: str | os.PathLike[str], *, remember: bool = T
         app.scene_dir = path.parent
         app.dirty = False
         app.info(f"saved {path}")
+
+
+def _writable(env: Environment, path: Path, source_dir: Path | None) -> Environment:
+    """``env`` as it can be written to ``path``: each generated human (a figure with a body
+    specification) is replaced by its :func:`~jackpy.body.human.peabody_copy`, its surfaces written
+    as ``NAME_psurf/FIGURE/SEGMENT.pss`` beside the scene (names relative to ``source_dir``, where
+    the writer expects them)."""
+    from jackpy.body.human import peabody_copy
+    from jackpy.peabody.psurf_io import write_psurf
+
+    humans = [f for f in env.figures.values() if getattr(f, "body_spec", None) is not None]
+    if not humans:
+        return env
+    out = Environment(dict(env.figures), list(env.includes))
+    base = Path(source_dir) if source_dir is not None else path.parent
+    for fig in humans:
+        folder = path.parent / f"{path.stem}_psurf" / fig.name
+        folder.mkdir(parents=True, exist_ok=True)
+        for seg in fig.segments.values():
+            if seg.psurf is not None and seg.psurf.mesh is not None:
+                write_psurf(folder / f"{seg.name}.pss", seg.psurf.mesh, f"{fig.name}.{seg.name}, generated by jackpy.body")
+        rel = Path(os.path.relpath(folder.resolve(), base.resolve())).as_posix()
+        out.figures[fig.name] = peabody_copy(fig, rel)
+    return out
+
+
+def _restore_human(fig: Figure, entry: dict[str, Any], where: str) -> None:
+    """A generated human read back: its spine and shoulder groups and its body specification."""
+    from jackpy.body.human import attach_groups, build_spec
+
+    h = entry["human"]
+    q = fig.q.copy()
+    try:
+        attach_groups(fig)
+        fig.q = q  # the sidecar's exact displacements (attaching re-derives them from the angles)
+        fig.body_spec = build_spec(h["sex"], float(h["percentile"]), h.get("population", "ansur2"))  # type: ignore[attr-defined]
+    except (JackpyError, KeyError, ValueError, TypeError) as exc:
+        raise SessionError(f"{where}: cannot restore the human ({exc})") from None
 
 
 def load_session(path: str | os.PathLike[str]) -> tuple[Environment, dict[str, Any] | None]:
@@ -150,8 +216,16 @@ def load_session(path: str | os.PathLike[str]) -> tuple[Environment, dict[str, A
         fig = env.figures.get(name)
         if fig is None:
             raise SessionError(f"{side}: figure {name!r} is not in {path.name}")
+        root = entry.get("root")
+        if root is not None and tuple(root) != fig.root:
+            try:
+                fig.reroot(*root)
+            except JackpyError as exc:
+                raise SessionError(f"{side}: figure {name!r} root: {exc}") from None
         fig.q = _matrix(entry["q"], (fig.ndof,), f"{side}: figure {name!r} q")
         fig.location = _matrix(entry["location"], (4, 4), f"{side}: figure {name!r} location")
+        if "human" in entry:
+            _restore_human(fig, entry, f"{side}: figure {name!r}")
     return env, data
 
 
@@ -177,12 +251,36 @@ def apply_session(app: "App", env: Environment, data: dict[str, Any] | None, bas
     for name, fig in env.figures.items():
         if isinstance(fig, CADObject):
             app.view.cad_figures.add(name)
+    for name, entries in ((data or {}).get("behaviors") or {}).items():
+        loop = app.loops.get(name)
+        if loop is None or not isinstance(entries, dict):
+            continue
+        for b in loop.behaviors:
+            e = entries.get(b.name)
+            if isinstance(e, dict):
+                set_behavior(b, bool(e.get("enabled", True)), e.get("params") or {})
     if data is not None and "camera" in data:
         c = data["camera"]
         cam = app.camera
         cam.target = _matrix(c["target"], (3,), "camera target")
         cam.distance, cam.yaw, cam.pitch = float(c["distance"]), float(c["yaw"]), float(c["pitch"])
         cam.orthographic = bool(c.get("orthographic", False))
+
+
+def set_behavior(behavior: Any, enabled: bool, params: dict[str, Any]) -> None:
+    """Set a behavior's switch and the params that are valid (others keep their values)."""
+    from jackpy.behaviors.base import validate
+
+    behavior.enabled = enabled
+    for k, v in params.items():
+        if not hasattr(behavior.params, k):
+            continue
+        old = getattr(behavior.params, k)
+        setattr(behavior.params, k, v)
+        try:
+            validate(behavior.params)
+        except (ValueError, TypeError):
+            setattr(behavior.params, k, old)
 
 
 def open_session(app: "App", path: str | os.PathLike[str]) -> None:
