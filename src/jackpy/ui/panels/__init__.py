@@ -15,7 +15,8 @@ class UiState:
     """Window-level UI state: which panels are open and the pending path prompt."""
 
     open_panels: dict[str, bool] = field(default_factory=lambda: {
-        "Scene": True, "Joints": True, "Goals": True, "Figure": False, "Log": True})
+        "Scene": True, "Joints": True, "Goals": True, "Figure": False, "Log": True,
+        "Analysis": False, "Eye view": False})
     prompt: str | None = None
     """Which path prompt is open: ``"open"``, ``"save_as"``, ``"import"``, ``"screenshot"``."""
     prompt_text: str = ""
@@ -34,3 +35,9 @@ def draw_all(app: "App", ui: UiState) -> None:
     for name, fn in panels.items():
         if ui.open_panels.get(name):
             fn(app, ui)
+    from jackpy.ui import eye_view
+    from jackpy.ui.panels import analysis
+
+    if ui.open_panels.get("Analysis"):
+        analysis.draw(app, ui)
+    eye_view.draw_window(app, ui)  # also tells the app whether to render the eye view
