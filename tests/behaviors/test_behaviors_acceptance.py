@@ -1,0 +1,92 @@
+"""Acceptance on the standard human (50th percentile male): a long randomised drag session, a
+reach beyond the arm that leans then steps, the pelvis-twist step (behaviors.md §7 items 19, 20,
+22) and the thumb in every grip (item 32). Nothing here depends on wall time."""
+
+import numpy as np
+import pytest
+
+from jackpy.behaviors import BehaviorLoop
+from jackpy.behaviors import manipulation as m
+from jackpy.behaviors.anatomy import human_anatomy
+from jackpy.behaviors.support import floor
+from jackpy.peabody.transforms import rotation
+
+body = pytest.importorskip("jackpy.body.human")
+
+
+def human_loop() -> BehaviorLoop:
+    f = body.make_human("male", 50)
+    return BehaviorLoop(f, human_anatomy(f))
+
+
+def balls(lp: BehaviorLoop) -> dict[str, np.ndarray]:
+    return {s: lp.figure.site_world(*f.ball)[:3, 3] for s, f in lp.anatomy.feet.items()}
+
+
+def com_margin(lp: BehaviorLoop) -> float:
+    bf = lp.balance_frame_for({s: f.target for s, f in lp.state.feet.items()})
+    return bf.margin(floor(lp.figure.centre_of_mass()))
+
+
+def test_500_random_drags_keep_balance_limits_and_planted_feet():
+    lp = human_loop()
+    fig, a = lp.figure, lp.anatomy
+    rng = np.random.default_rng(11)
+    lo, hi = fig.lower, fig.upper
+    pel0 = fig.site_world(a.pelvis, a.pelvis_site)[:3, :3].copy()
+    palms = {s: fig.site_world(*h.palm)[:3, 3].copy() for s, h in a.hands.items()}
+    prev = balls(lp)
+    worst_slide, steps_seen, frames_out = 0.0, 0, 0
+    target = None
+    for frame in range(500):
+        if frame % 10 == 0:  # a new drag every 10 frames: hand, pelvis or torso
+            m.end_drag(lp)
+            kind = rng.integers(3)
+            if kind == 0:
+                side = "left" if rng.random() < 0.5 else "right"
+                start = fig.site_world(*a.hands[side].palm)[:3, 3].copy()
+                goal = palms[side] + rng.uniform((-0.25, 0.0, 0.0), (0.25, 0.6, 0.45))
+            elif kind == 1:
+                ang = rng.uniform((-0.3, -0.15, -0.1), (0.3, 0.25, 0.1))
+                rot0 = fig.site_world(a.pelvis, a.pelvis_site)[:3, :3].copy()
+                goal_rot = (rotation("y", ang[0])[:3, :3] @ rotation("x", ang[1])[:3, :3]
+                            @ rotation("z", ang[2])[:3, :3] @ pel0)
+                shift = rng.uniform((-0.03, 0, -0.03), (0.03, 0, 0.05))
+            else:
+                bend = rng.uniform((-0.1, -0.15, -0.15), (0.5, 0.15, 0.15))
+            target = kind
+        u = (frame % 10 + 1) / 10.0  # incremental: goals move a tenth of the way per frame
+        if target == 0:
+            m.move_hand(lp, side, position=(1 - u) * start + u * goal)
+        elif target == 1:
+            m.move_pelvis(lp, rotation=goal_rot if u == 1.0 else _slerp(rot0, goal_rot, u),
+                          translation=shift / 10.0)
+        else:
+            m.bend_torso(lp, *(u * bend))
+        r = lp.step()
+        q = fig.q
+        assert np.all(q >= lo - 1e-9) and np.all(q <= hi + 1e-9), f"frame {frame}: a joint left its limits"
+        stepping = lp.behavior("stepping").step is not None or any("step" in n for n in r.notes)
+        steps_seen += any("landed" in n for n in r.notes)
+        now = balls(lp)
+        if not stepping and "root" not in " ".join(r.notes):
+            for s in now:
+                slide = float(np.linalg.norm(now[s] - prev[s]))
+                worst_slide = max(worst_slide, slide)
+                assert slide < 1e-3, f"frame {frame}: planted {s} foot slid {slide * 1e3:.2f} mm"
+            # the COM is over the feet, or a step (which lands it back inside) is under way
+            if com_margin(lp) >= 0.0:
+                frames_out += 1
+                assert lp.behavior("stepping").step is not None or frames_out <= 3, f"frame {frame}: COM outside"
+            else:
+                frames_out = 0
+        prev = now
+    assert com_margin(lp) < 0.0
+
+
+def _slerp(r0: np.ndarray, r1: np.ndarray, u: float) -> np.ndarray:
+    from jackpy.behaviors.hands import turn_towards
+
+    d = r1 @ r0.T
+    angle = float(np.arccos(np.clip((np.trace(d) - 1.0) / 2.0, -1.0, 1.0)))
+    return turn_towards(r0, r1, u * angle)[0]
