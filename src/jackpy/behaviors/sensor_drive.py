@@ -5,9 +5,11 @@ frame at a time, in the book's order:
 
 1. **pelvis**: the waist sensor's target sets the pelvis orientation goal
    (:func:`~jackpy.behaviors.manipulation.move_pelvis` with ``rotation``) and its floor position:
-   each frame the balance point is dragged by ``pelvis_gain`` × the horizontal distance from the
-   pelvis site to its target (``move_pelvis`` with ``translation``, at most ``pelvis_max_shift`` a
-   frame), so the pelvis settles on the sensor while the COM stays the balance goal. [proposal]
+   each frame the balance point is dragged (``move_pelvis`` with ``translation``, at most
+   ``pelvis_max_shift``) towards the COM's floor point plus ``pelvis_gain`` × the horizontal
+   distance from the pelvis site to its target, so the pelvis settles on the sensor while the COM
+   stays the balance goal; when the feet hold the body back the point reaches the edge of the
+   support polygon and the stepping behavior takes a step. [proposal]
    The book roots the figure through the pelvis and sets its pose outright; jackpy keeps its feet
    planted and balanced, so the pelvis is servoed instead. Its height follows the legs.
 2. **spine**: the neck sensor against the waist sensor gives the spine target (flexion, lateral
@@ -67,7 +69,7 @@ class DriveConfig:
     pelvis: bool = True
     torso: bool = True
     hands: bool = True
-    pelvis_gain: float = 0.8
+    pelvis_gain: float = 1.0
     pelvis_max_shift: float = 0.05
     spine_iterations: int = 2
     place_transmitter: bool = True
@@ -249,12 +251,28 @@ class SensorDrive:
             # 1. pelvis: orientation goal, floor position servoed through the balance point
             pel = targets.get("pelvis")
             if cfg.pelvis and pel is not None:
-                now = loop.figure.site_world(*self.sites["pelvis"])
-                d = cfg.pelvis_gain * floor(pel[:3, 3] - now[:3, 3])
-                n = float(np.linalg.norm(d))
+                fig = loop.figure
+                # where the COM belongs for the pelvis to sit on its target (the body's current
+                # COM-to-pelvis offset kept); the balance point moves towards it, at most
+                # pelvis_max_shift a frame. It is no integral, so nothing winds up while the feet
+                # hold the body back: the point reaches the edge of the feet and a step follows.
+                com = floor(fig.centre_of_mass())
+                err = cfg.pelvis_gain * floor(pel[:3, 3] - fig.site_world(*self.sites["pelvis"])[:3, 3])
+                st = loop.state
+                base = st.com_drag if st.com_drag is not None else st.balance_point
+                want = com + err
+                if float(np.linalg.norm(base - com)) > 0.01 and float(np.linalg.norm(err)) > 0.02 \
+                        and float(err @ (base - com)) > 0.0:
+                    # the feet hold the COM back from its goal: push the point on towards the
+                    # edge of the support polygon, where the stepping behavior takes a step
+                    want = base + err
+                shift = want - base
+                n = float(np.linalg.norm(shift))
                 if n > cfg.pelvis_max_shift:
-                    d *= cfg.pelvis_max_shift / n
-                m.move_pelvis(loop, rotation=pel[:3, :3], translation=np.array([d[0], 0.0, d[1]]))
+                    shift *= cfg.pelvis_max_shift / n
+                if self._stepping():  # a step in progress owns the balance point
+                    shift = np.zeros(2)
+                m.move_pelvis(loop, rotation=pel[:3, :3], translation=np.array([shift[0], 0.0, shift[1]]))
             # 2. spine from the neck against the waist, measured from the calibration pose
             if cfg.torso and pel is not None and "neck" in targets and "neck" in self._neutral:
                 self._spine = self._bend(pel, targets["neck"])
@@ -273,6 +291,13 @@ class SensorDrive:
         return DriveReport(self.frames, fresh, skipped, targets, errors,
                            tuple(float(v) for v in self._spine) if cfg.torso else None,
                            newest if live else None, solved, (solved - t0) * 1e3, report, list(report.notes))
+
+    def _stepping(self) -> bool:
+        """Whether the loop's stepping behavior is in the middle of a step."""
+        for b in self.loop.behaviors:
+            if b.name == "stepping" and getattr(b, "step", None) is not None:
+                return True
+        return False
 
     def _relative(self, pelvis: np.ndarray, neck: np.ndarray) -> np.ndarray:
         """Spine angles (flexion, lateral, axial; jackpy's spine-group signs) of ``neck`` against
