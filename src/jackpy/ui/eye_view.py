@@ -106,6 +106,8 @@ def draw_window(app: "App", ui: "UiState") -> None:
     state.eye_view_open = bool(ui.open_panels.get("Eye view"))
     if not state.eye_view_open:
         return
+    vp = imgui.get_main_viewport()
+    imgui.set_next_window_pos((8, vp.size.y - EYE_VIEW_SIZE[1] - 70), imgui.Cond_.first_use_ever)
     imgui.set_next_window_size((EYE_VIEW_SIZE[0] + 16, EYE_VIEW_SIZE[1] + 60), imgui.Cond_.first_use_ever)
     visible, ui.open_panels["Eye view"] = imgui.begin("Eye view", ui.open_panels["Eye view"])
     if visible:

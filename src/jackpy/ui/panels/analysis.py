@@ -339,7 +339,16 @@ def start_report(app: "App", folder: str | Path, figures: str = "female:5,male:9
 
 
 # ---------------------------------------------------------------------- imgui
-_ui = {"target": 0, "clear": 0, "view": 0, "folder": "report", "figures": "female:5,male:95"}
+_ui = {"target": 0, "clear": 0, "view": 0, "folder": "report", "figures": "female:5,male:95", "open_all": False}
+"""The panel's widget state; ``open_all`` opens every section (tests)."""
+
+
+def _header(label: str, default_open: bool = False) -> bool:
+    from imgui_bundle import imgui
+
+    if _ui["open_all"]:
+        imgui.set_next_item_open(True)
+    return imgui.collapsing_header(label, imgui.TreeNodeFlags_.default_open if default_open else 0)
 
 
 def _combo(label: str, key: str, items: list[str]) -> str | None:
@@ -408,7 +417,7 @@ def draw(app: "App", ui: "UiState") -> None:
 def _reach_section(app: "App", state: AnalysisState) -> None:
     from imgui_bundle import imgui
 
-    if not imgui.collapsing_header("Reach", imgui.TreeNodeFlags_.default_open):
+    if not _header("Reach", True):
         return
     imgui.set_next_item_width(120)
     state.resolution = imgui.slider_int("resolution", state.resolution, 8, 96)[1]
@@ -446,7 +455,7 @@ def _strength_section(app: "App", state: AnalysisState) -> None:
 
     from jackpy.analysis import strength_colour
 
-    if not imgui.collapsing_header("Strength"):
+    if not _header("Strength"):
         return
     state.strength_live = True
     imgui.set_next_item_width(120)
@@ -461,16 +470,15 @@ def _strength_section(app: "App", state: AnalysisState) -> None:
         u = bar.required / bar.strength if bar.strength > 0 else (np.inf if bar.required > 0 else 0.0)
         r, g, b = strength_colour(min(u, 2.0))
         imgui.push_style_color(imgui.Col_.plot_histogram, imgui.ImVec4(float(r), float(g), float(b), 1.0))
-        imgui.push_style_color(imgui.Col_.text, imgui.ImVec4(0.05, 0.05, 0.05, 1.0))
         imgui.progress_bar(float(min(u, 1.0)), (-1, 0),
                            f"{bar.dof}: {bar.required:.0f} / {bar.strength:.0f} N m ({100 * u:.0f}%)")
-        imgui.pop_style_color(2)
+        imgui.pop_style_color()
 
 
 def _clearance_section(app: "App", state: AnalysisState) -> None:
     from imgui_bundle import imgui
 
-    if not imgui.collapsing_header("Clearance"):
+    if not _header("Clearance"):
         return
     state.clearance_on = imgui.checkbox("live clearance and collisions", state.clearance_on)[1]
     names = [o.name for o in scene_objects(app.env)]
@@ -491,7 +499,7 @@ def _clearance_section(app: "App", state: AnalysisState) -> None:
 def _view_section(app: "App", state: AnalysisState, ui: "UiState") -> None:
     from imgui_bundle import imgui
 
-    if not imgui.collapsing_header("View"):
+    if not _header("View"):
         return
     state.show_cones = imgui.checkbox("view cones", state.show_cones)[1]
     imgui.same_line()
@@ -509,7 +517,7 @@ def _view_section(app: "App", state: AnalysisState, ui: "UiState") -> None:
 def _report_section(app: "App", state: AnalysisState) -> None:
     from imgui_bundle import imgui
 
-    if not imgui.collapsing_header("Report"):
+    if not _header("Report"):
         return
     imgui.set_next_item_width(180)
     _ui["folder"] = imgui.input_text("folder", _ui["folder"])[1]
