@@ -30,7 +30,12 @@ from jackpy.body.human import make_human
 from jackpy.devices.flock.driver import Sample
 from jackpy.devices.flock.protocol import Format, angles_from_rotation, make_record
 from jackpy.devices.recording import Recorder
-from jackpy.devices.sensors import INCH, TRANSMITTER_TO_WORLD, sensor_config_from_dict, sensor_pose
+from jackpy.devices.sensors import (
+    INCH,
+    TRANSMITTER_TO_WORLD,
+    sensor_config_from_dict,
+    sensor_pose,
+)
 
 HERE = Path(__file__).resolve().parent
 RATE = 100.0
@@ -125,7 +130,7 @@ def main(out: Path = HERE / "reach.jsonl") -> None:
     q0 = fig.q.copy()
     world = sensor_config_from_dict(CONFIG).world_from_transmitter
     mount = mounts()
-    n = int(round(SECONDS * RATE))
+    n = round(SECONDS * RATE)
     final = {}
     with Recorder(out, meta={"description": "standard human (male, 50th) reaching forward with the right hand",
                              "figure": {"sex": "male", "percentile": 50}, "rate_hz": RATE,

@@ -22,7 +22,13 @@ from jackpy.devices.flock.driver import FlockDriver, Sample
 from jackpy.devices.flock.protocol import Format, angles_from_rotation, make_record
 from jackpy.devices.flock.simulator import FlockSimulator
 from jackpy.devices.recording import FrameMotion, read_recording
-from jackpy.devices.sensors import INCH, TRANSMITTER_TO_WORLD, SensorConfig, SensorMount, sensor_config_from_dict
+from jackpy.devices.sensors import (
+    INCH,
+    TRANSMITTER_TO_WORLD,
+    SensorConfig,
+    SensorMount,
+    sensor_config_from_dict,
+)
 from jackpy.errors import DeviceError
 
 EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "flock"
@@ -56,7 +62,7 @@ def test_live_reach_through_simulator_and_driver(reach, final):
             loop = human_loop()
             drive = SensorDrive(loop, drv, cfg)
             drive.calibrate()
-            consumed = dict(drive._last_seq)
+            consumed = drive.consumed
             motion.play()
             reports, worst, after_end = [], 0.0, 0
             for _ in range(20000):  # a cap, not a clock: the test ends on frames counted
@@ -83,7 +89,7 @@ def test_live_reach_through_simulator_and_driver(reach, final):
         assert np.linalg.norm(fig.site_world(*drive.sites[p])[:3, 3] - final[p][:3, 3]) < 0.02
     # every sample the driver decoded was either taken by a frame or counted as skipped
     taken = sum(len(r.fresh) for r in reports)
-    seqs = sum(drive._last_seq[b] - consumed[b] for b in range(1, 5))
+    seqs = sum(drive.consumed[b] - consumed[b] for b in range(1, 5))
     assert taken + st.skipped == seqs and st.dropped == 0
     assert st.state == "stream" and st.calibrated and st.birds == {1: "pelvis", 2: "neck", 3: "left_palm",
                                                                   4: "right_palm"}

@@ -45,8 +45,15 @@ from jackpy.behaviors.loop import BehaviorLoop, FrameReport
 from jackpy.behaviors.support import floor
 from jackpy.devices.flock.driver import Sample
 from jackpy.devices.recording import Recording
-from jackpy.devices.sensors import (Calibration, SensorConfig, TargetSmoother, calibrate, default_config,
-                                    sensor_targets, spine_angles)
+from jackpy.devices.sensors import (
+    Calibration,
+    SensorConfig,
+    TargetSmoother,
+    calibrate,
+    default_config,
+    sensor_targets,
+    spine_angles,
+)
 from jackpy.errors import DeviceError
 
 HANDS = {"left_palm": "left", "right_palm": "right"}
@@ -200,6 +207,11 @@ class SensorDrive:
     @property
     def calibrated(self) -> bool:
         return self.calibration is not None
+
+    @property
+    def consumed(self) -> dict[int, int]:
+        """Sequence number of the last sample of each bird a frame (or the calibration) used."""
+        return dict(self._last_seq)
 
     # ----- one frame --------------------------------------------------------------------------------
     def _samples(self, samples: Mapping[int, Sample] | None) -> Mapping[int, Sample]:

@@ -180,7 +180,11 @@ def _figure_drive(args: argparse.Namespace, rec):
     from jackpy.behaviors.anatomy import human_anatomy
     from jackpy.behaviors.sensor_drive import DriveConfig, SensorDrive
     from jackpy.body.human import make_human
-    from jackpy.devices.sensors import default_config, load_sensor_config, sensor_config_from_dict
+    from jackpy.devices.sensors import (
+        default_config,
+        load_sensor_config,
+        sensor_config_from_dict,
+    )
 
     meta = rec.header.get("figure") if isinstance(rec.header.get("figure"), dict) else {}
     sex = args.sex or meta.get("sex", "male")
@@ -232,7 +236,7 @@ def run_replay_figure(args: argparse.Namespace, rec) -> int:
                               "step_ms": r.step_ms}), flush=True)
         elif not args.quiet:
             errs = "  ".join(f"{p} {e * 100:5.2f}" for p, e in r.errors.items())
-            spine = "" if r.spine is None else "  spine %+.1f %+.1f %+.1f deg" % tuple(np.degrees(r.spine))
+            spine = "" if r.spine is None else "  spine {:+.1f} {:+.1f} {:+.1f} deg".format(*np.degrees(r.spine))
             notes = f"  [{'; '.join(r.notes)}]" if r.notes else ""
             print(f"frame {k:6d}  t={t:7.3f} s  error cm: {errs}{spine}{notes}", flush=True)
         if args.png:
