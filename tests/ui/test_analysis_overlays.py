@@ -8,8 +8,15 @@ import pytest
 
 from jackpy.analysis import Workspace, eye_view
 from jackpy.ui.analysis_overlays import (
-    COLLISION_COLOUR, CONE_MESH, WORKSPACE_MESH, recolour_items, segment_strength_colours, unit_cone,
-    view_cone_items, workspace_items, workspace_mesh,
+    COLLISION_COLOUR,
+    CONE_MESH,
+    WORKSPACE_MESH,
+    recolour_items,
+    segment_strength_colours,
+    unit_cone,
+    view_cone_items,
+    workspace_items,
+    workspace_mesh,
 )
 from jackpy.ui.render import DrawItem, Scene, box
 
@@ -114,7 +121,13 @@ def test_recolour_items_only_touches_named_segments():
 
 
 def test_strength_colours_follow_the_load():
-    from jackpy.analysis import Load, dof_strengths, joint_torques, joint_utilisation, utilisation
+    from jackpy.analysis import (
+        Load,
+        dof_strengths,
+        joint_torques,
+        joint_utilisation,
+        utilisation,
+    )
     from jackpy.body import make_human
     from jackpy.body.strength import strength_table
 

@@ -118,7 +118,9 @@ def test_report_button_writes_the_report(renderer, tmp_path):
     assert set(r["reach"]) == {"desk.button", "desk.far_corner", "shelf.box_handle", "panel.switch"}
     assert set(r["view"]) == {"desk", "shelf", "panel", "gauge", "partition"}
     assert {"female50-overall.png", "female50-eye.png", "female50-reach.png"} <= {p.name for p in out.iterdir()}
-    with pytest.raises(Exception):
+    from jackpy.errors import JackpyError
+
+    with pytest.raises(JackpyError):
         ap.start_report(app, tmp_path / "x", "robot:50")
 
 

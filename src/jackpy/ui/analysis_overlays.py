@@ -31,7 +31,8 @@ import numpy as np
 
 from jackpy.peabody import Environment, Figure
 from jackpy.ui.render import DrawItem, Lines, Scene
-from jackpy.ui.render.mesh import Mesh as RenderMesh, lathe
+from jackpy.ui.render.mesh import Mesh as RenderMesh
+from jackpy.ui.render.mesh import lathe
 
 if TYPE_CHECKING:
     from jackpy.analysis import Clearance, EyeView, PointReach, Visibility, Workspace
@@ -68,7 +69,7 @@ def _frame_along(direction: np.ndarray) -> np.ndarray:
     return np.column_stack([x, y, z])
 
 
-def view_cone_items(eye: "EyeView", length: float = CONE_LENGTH,
+def view_cone_items(eye: EyeView, length: float = CONE_LENGTH,
                     colours: Mapping[str, tuple[float, float, float, float]] = CONE_COLOURS) -> list[DrawItem]:
     """Translucent cones of :data:`jackpy.analysis.VIEW_CONES` (those in ``colours``, below 90
     degrees) with their apex at the eye point along the gaze, ``length`` m long, widest first."""
@@ -120,14 +121,14 @@ def recolour_items(items: Iterable[DrawItem], figure: str, colours: Mapping[str,
     return [replace(it, color=tuple(by_key[it.mesh])) if it.mesh in by_key else it for it in items]
 
 
-def reach_lines(result: "PointReach") -> list[Lines]:
+def reach_lines(result: PointReach) -> list[Lines]:
     """A line from the hand (after the reach) to the target: green when reached, red when short."""
     colour = (0.2, 0.95, 0.3, 1.0) if result.reached else (1.0, 0.25, 0.2, 1.0)
     seg = np.array([[result.position, result.target]], float)
     return [Lines(seg, colour, on_top=True)]
 
 
-def clearance_lines(c: "Clearance") -> list[Lines]:
+def clearance_lines(c: Clearance) -> list[Lines]:
     """The nearest points of a clearance query joined by a line."""
     return [Lines(np.array([[c.point_on_segment, c.point_on_body]], float), (1.0, 0.9, 0.2, 1.0), on_top=True)]
 
@@ -169,7 +170,7 @@ class WorkspaceResult:
     """A finished reachable-workspace job: the voxels, their surface, and the classified sites
     (``name -> (inside, distance m)``)."""
 
-    workspace: "Workspace"
+    workspace: Workspace
     surface: Any
     sites: dict[str, tuple[bool, float]]
     figure: str
@@ -205,16 +206,16 @@ class AnalysisState:
     strength_error: str | None = None
     clearance_on: bool = False
     clearance_object: str | None = None
-    clearance: "Clearance | None" = None
+    clearance: Clearance | None = None
     colliding: set[str] = field(default_factory=set)
     clearance_error: str | None = None
     show_cones: bool = False
     eye_view_open: bool = False
     reach_target: str | None = None
-    reach: "PointReach | None" = None
-    visibility: "Visibility | None" = None
+    reach: PointReach | None = None
+    visibility: Visibility | None = None
     report_job: Any = None
-    _main_queue: "queue.Queue[Callable[[], None]]" = field(default_factory=queue.Queue)
+    _main_queue: queue.Queue[Callable[[], None]] = field(default_factory=queue.Queue)
     _checker: Any = None
     _checker_key: tuple = ()
     _live_key: tuple = ()
@@ -239,7 +240,7 @@ class AnalysisState:
             fn()
 
     # ------------------------------------------------------------------ live analyses
-    def figure(self, app: "App") -> Figure | None:
+    def figure(self, app: App) -> Figure | None:
         """The analysed figure: the app's figure of interest."""
         return app.figure_of_interest()
 
@@ -261,8 +262,15 @@ class AnalysisState:
 
     def update_strength(self, figure: Figure) -> None:
         """Torques and utilisation at the figure's posture holding ``load_kg`` in the chosen hand."""
-        from jackpy.analysis import (Chain, Load, figure_parts, joint_torques, joint_utilisation,
-                                     strength_bars, utilisation)
+        from jackpy.analysis import (
+            Chain,
+            Load,
+            figure_parts,
+            joint_torques,
+            joint_utilisation,
+            strength_bars,
+            utilisation,
+        )
 
         try:
             table = self.strength_table(figure)
@@ -281,7 +289,7 @@ class AnalysisState:
                                         segment_strength_colours(figure, ju))
         self.strength_error = None
 
-    def update_clearance(self, app: "App", figure: Figure) -> None:
+    def update_clearance(self, app: App, figure: Figure) -> None:
         """Rebuild the checker when the figure or objects changed, then query this posture."""
         from jackpy.analysis import ClearanceChecker
 
@@ -302,7 +310,7 @@ class AnalysisState:
         except Exception as exc:  # no python-fcl, no geometry on the figure
             self.clearance, self.colliding, self.clearance_error = None, set(), f"{exc}"
 
-    def refresh(self, app: "App") -> None:
+    def refresh(self, app: App) -> None:
         """Bring the live analyses up to date when the posture, placements or choices changed."""
         fig = self.figure(app)
         if fig is None:
@@ -332,7 +340,7 @@ class AnalysisState:
             renderer.add_mesh(key, mesh, replace=True)
             self._uploaded[(id(renderer), key)] = version
 
-    def overlay(self, app: "App", scene: Scene, renderer) -> Scene:
+    def overlay(self, app: App, scene: Scene, renderer) -> Scene:
         """Add the analyses' draw data to ``scene`` (in place; returned) and upload their meshes."""
         fig = self.figure(app)
         if fig is None:
@@ -361,13 +369,13 @@ class AnalysisState:
                 scene.items.extend(view_cone_items(ev))
         return scene
 
-    def decorate(self, app: "App", scene: Scene) -> Scene:
+    def decorate(self, app: App, scene: Scene) -> Scene:
         """Per frame, before the main render: run posted work, refresh live analyses, add overlays."""
         self.pump()
         self.refresh(app)
         return self.overlay(app, scene, app.renderer)
 
-    def after_draw(self, app: "App") -> None:
+    def after_draw(self, app: App) -> None:
         """Per frame, after the main render: the eye view (when its window is open)."""
         if self.eye_view_open and app.renderer is not None:
             from jackpy.ui.eye_view import EyeViewport

@@ -39,7 +39,7 @@ def hidden_segments(figure: Figure, segment: str) -> set[str]:
     return {kin.segment_names[s] for s in out}
 
 
-def eye_scene(app: "App", view: SceneView, figure: Figure) -> Scene:
+def eye_scene(app: App, view: SceneView, figure: Figure) -> Scene:
     """The app's environment without the figure's head (and what hangs from it), no goal markers."""
     from jackpy.analysis import figure_parts
 
@@ -54,12 +54,12 @@ class EyeViewport:
 
     def __init__(self, size: tuple[int, int] = EYE_VIEW_SIZE) -> None:
         self.size = size
-        self.renderer: "Renderer | None" = None
+        self.renderer: Renderer | None = None
         self.view = SceneView()
-        self.eye: "EyeView | None" = None
+        self.eye: EyeView | None = None
         self.error: str | None = None
 
-    def render(self, app: "App") -> bool:
+    def render(self, app: App) -> bool:
         """Draw the current scene from the figure's eyes; False (with :attr:`error`) when the
         figure has no recognised eyes or nothing is drawn yet."""
         from jackpy.analysis import eye_view
@@ -98,7 +98,7 @@ class EyeViewport:
             self.renderer = None
 
 
-def draw_window(app: "App", ui: "UiState") -> None:
+def draw_window(app: App, ui: UiState) -> None:
     """The imgui window showing the eye view (the App renders it after the main view)."""
     from imgui_bundle import imgui
 

@@ -29,7 +29,12 @@ import numpy as np
 
 from jackpy.errors import JackpyError
 from jackpy.peabody import Environment
-from jackpy.ui.analysis_overlays import AnalysisState, WorkspaceResult, scene_objects, scene_targets
+from jackpy.ui.analysis_overlays import (
+    AnalysisState,
+    WorkspaceResult,
+    scene_objects,
+    scene_targets,
+)
 
 if TYPE_CHECKING:
     from jackpy.analysis import PointReach, Visibility
@@ -67,7 +72,7 @@ class Job:
             self.done = True
             self.finished()
 
-    def start(self) -> "Job":
+    def start(self) -> Job:
         self._thread = threading.Thread(target=self._main, name=type(self).__name__, daemon=True)
         self._thread.start()
         return self
@@ -124,7 +129,7 @@ class WorkspaceJob(Job):
             self.state.post(lambda: setattr(self.state, "workspace", result))
 
 
-def start_workspace(app: "App", max_samples: int = 2_000_000, start: bool = True) -> WorkspaceJob:
+def start_workspace(app: App, max_samples: int = 2_000_000, start: bool = True) -> WorkspaceJob:
     """Start computing the chosen hand's workspace at the figure's current posture."""
     state = app.analysis
     fig = app.figure_of_interest()
@@ -139,7 +144,7 @@ def start_workspace(app: "App", max_samples: int = 2_000_000, start: bool = True
     return job.start() if start else job
 
 
-def cancel_workspace(app: "App") -> None:
+def cancel_workspace(app: App) -> None:
     """Cancel the running workspace job (it stops at its next batch)."""
     job = app.analysis.workspace_job
     if job is not None:
@@ -147,7 +152,7 @@ def cancel_workspace(app: "App") -> None:
 
 
 # ---------------------------------------------------------------------- reach, view
-def reach_target(app: "App", target: str) -> "PointReach":
+def reach_target(app: App, target: str) -> PointReach:
     """Point reach of scene site ``target`` with the chosen hand (the figure's posture is kept)."""
     from jackpy.analysis import point_reach
 
@@ -162,7 +167,7 @@ def reach_target(app: "App", target: str) -> "PointReach":
     return state.reach
 
 
-def apply_reach(app: "App") -> None:
+def apply_reach(app: App) -> None:
     """Put the figure in the last point reach's posture (one undo step)."""
     r = app.analysis.reach
     fig = app.figure_of_interest()
@@ -179,10 +184,15 @@ def view_targets(env: Environment) -> list[str]:
     return [o.name for o in scene_objects(env)] + list(scene_targets(env))
 
 
-def measure_visibility(app: "App", target: str, size: tuple[int, int] = (256, 256)) -> "Visibility":
+def measure_visibility(app: App, target: str, size: tuple[int, int] = (256, 256)) -> Visibility:
     """Visible fraction of ``target`` (an object or ``object.site``) from the figure's eyes, and what
     hides it, rendered on the app's own GL context (main thread)."""
-    from jackpy.analysis import eye_view, figure_bodies, object_visibility, point_visibility
+    from jackpy.analysis import (
+        eye_view,
+        figure_bodies,
+        object_visibility,
+        point_visibility,
+    )
     from jackpy.analysis.offscreen import OffscreenRenderer
 
     fig = app.figure_of_interest()
@@ -258,7 +268,7 @@ class MainThreadRenderer:
         self._call("release")
 
 
-def workplace_from_app(app: "App", reach: list[str] | None = None, view: list[str] | None = None):
+def workplace_from_app(app: App, reach: list[str] | None = None, view: list[str] | None = None):
     """A :class:`jackpy.scene.workplace.Workplace` of the app's scene: copies of its objects, the
     figure's standing place and heading, and the analysis plan (default: every CAD site to reach,
     every CAD object to look at; the panel's hand and load)."""
@@ -287,7 +297,7 @@ def workplace_from_app(app: "App", reach: list[str] | None = None, view: list[st
 class ReportJob(Job):
     """``write_report`` for the app's scene on a worker thread."""
 
-    def __init__(self, app: "App", folder: Path, figures: list[tuple[str, float]], resolution: int,
+    def __init__(self, app: App, folder: Path, figures: list[tuple[str, float]], resolution: int,
                  make_figure: Callable | None = None) -> None:
         from jackpy.analysis.report import Options
 
@@ -322,7 +332,7 @@ def _picture_size() -> tuple[int, int]:
     return PICTURE_SIZE
 
 
-def start_report(app: "App", folder: str | Path, figures: str = "female:5,male:95",
+def start_report(app: App, folder: str | Path, figures: str = "female:5,male:95",
                  resolution: int | None = None, make_figure: Callable | None = None) -> ReportJob:
     """One click: write ``report.html`` (and results.json/csv, pictures) for the current scene into
     ``folder``. ``figures`` as ``jackpy analyze --figures``."""
@@ -382,14 +392,14 @@ def _progress_row(job: Job | None, cancel: Callable[[], None] | None) -> bool:
     return False
 
 
-def _run(app: "App", action: Callable[[], object]) -> None:
+def _run(app: App, action: Callable[[], object]) -> None:
     try:
         action()
     except (JackpyError, ValueError, OSError) as exc:
         app.info(f"error: {exc}")
 
 
-def draw(app: "App", ui: "UiState") -> None:
+def draw(app: App, ui: UiState) -> None:
     from imgui_bundle import imgui
 
     state: AnalysisState = app.analysis
@@ -414,7 +424,7 @@ def draw(app: "App", ui: "UiState") -> None:
     imgui.end()
 
 
-def _reach_section(app: "App", state: AnalysisState) -> None:
+def _reach_section(app: App, state: AnalysisState) -> None:
     from imgui_bundle import imgui
 
     if not _header("Reach", True):
@@ -450,7 +460,7 @@ def _reach_section(app: "App", state: AnalysisState) -> None:
             imgui.text(f"{state.reach_target}: {state.reach.describe()}")
 
 
-def _strength_section(app: "App", state: AnalysisState) -> None:
+def _strength_section(app: App, state: AnalysisState) -> None:
     from imgui_bundle import imgui
 
     from jackpy.analysis import strength_colour
@@ -475,7 +485,7 @@ def _strength_section(app: "App", state: AnalysisState) -> None:
         imgui.pop_style_color()
 
 
-def _clearance_section(app: "App", state: AnalysisState) -> None:
+def _clearance_section(app: App, state: AnalysisState) -> None:
     from imgui_bundle import imgui
 
     if not _header("Clearance"):
@@ -496,7 +506,7 @@ def _clearance_section(app: "App", state: AnalysisState) -> None:
         imgui.text_colored((1.0, 0.3, 0.25, 1.0), "colliding: " + ", ".join(sorted(state.colliding)))
 
 
-def _view_section(app: "App", state: AnalysisState, ui: "UiState") -> None:
+def _view_section(app: App, state: AnalysisState, ui: UiState) -> None:
     from imgui_bundle import imgui
 
     if not _header("View"):
@@ -514,7 +524,7 @@ def _view_section(app: "App", state: AnalysisState, ui: "UiState") -> None:
             imgui.text(f"  hidden by {name} ({100 * share:.0f}%)")
 
 
-def _report_section(app: "App", state: AnalysisState) -> None:
+def _report_section(app: App, state: AnalysisState) -> None:
     from imgui_bundle import imgui
 
     if not _header("Report"):
