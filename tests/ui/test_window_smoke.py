@@ -11,10 +11,10 @@ if not os.environ.get("DISPLAY"):
     pytest.skip("window tests need an X display (run under xvfb-run, see scripts/test.sh)",
                 allow_module_level=True)
 
-from jackpy.ui import session  # noqa: E402
-from jackpy.ui.app import App  # noqa: E402
-from jackpy.ui.scene_view import SegmentPick  # noqa: E402
-from jackpy.ui.window import Window  # noqa: E402
+from jackpy.ui import session
+from jackpy.ui.app import App
+from jackpy.ui.scene_view import SegmentPick
+from jackpy.ui.window import Window
 
 
 def in_child_process(request) -> bool:
@@ -42,6 +42,9 @@ def test_window_draws_view_and_panels(request):
     try:
         fig = app.figure_of_interest()
         app.select(SegmentPick(fig.name, "right_forearm"))
+        for name in ("Figure", "Behaviors", "Devices"):  # every panel of the workbench draws
+            win.ui.open_panels[name] = True
+        win.ui.prompt = "import"  # the Import CAD dialog with its units and up axis
         for _ in range(3):
             win.frame()
         pixels = np.frombuffer(win.ctx.screen.read(components=3), np.uint8).reshape(640, 900, 3)

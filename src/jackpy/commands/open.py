@@ -10,6 +10,8 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("scene", nargs="?", default=None, help="scene file (.env or .fig) to open")
     p.add_argument("--frames", type=int, default=None, metavar="N",
                    help="draw N frames and exit (a smoke test of the window)")
+    p.add_argument("--birds", type=int, default=4, metavar="N",
+                   help="number of sensor birds on the --flock port (default 4: waist, neck, palms)")
     p.set_defaults(func=run)
 
 
@@ -29,6 +31,12 @@ def run(args: argparse.Namespace) -> int:
             session.open_session(app, Path(args.scene))
         else:
             window.ui.recovery_offer = str(p) if (p := session.pending_recovery()) else None
+        flock = getattr(args, "flock", None)
+        if flock:
+            from jackpy.ui.panels.devices import link_of
+
+            window.ui.open_panels["Devices"] = True
+            link_of(app).connect(flock, getattr(args, "birds", 4))  # an error is in the log panel
         frames = getattr(args, "frames", None)
         if frames is None:
             window.run(autosave=lambda: session.autosave(app))
@@ -36,6 +44,9 @@ def run(args: argparse.Namespace) -> int:
             for _ in range(frames):
                 window.frame()
     finally:
+        link = getattr(app, "device_link", None)
+        if link is not None:
+            link.disconnect()
         window.close()
     session.discard_recovery(session.recovery_path())
     return 0

@@ -23,9 +23,9 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from jackpy.behaviors import BehaviorLoop, FrameReport
-from jackpy.behaviors import manipulation
+from jackpy.behaviors import BehaviorLoop, FrameReport, manipulation
 from jackpy.behaviors.anatomy import human_anatomy
+from jackpy.errors import JackpyError
 from jackpy.ik.goals import Goal, Orientation, Position, PositionOrientation
 from jackpy.ik.problem import Problem
 from jackpy.ik.result import ITERATION_LIMIT
@@ -33,7 +33,7 @@ from jackpy.ik.solver import solve as ik_solve
 from jackpy.peabody import Environment, Figure
 from jackpy.peabody.transforms import rigid_inverse
 from jackpy.ui.analysis_overlays import AnalysisState
-from jackpy.ui.camera import OrbitCamera, navigation_action, NavAction
+from jackpy.ui.camera import NavAction, OrbitCamera, navigation_action
 from jackpy.ui.manipulator import Manipulator
 from jackpy.ui.scene_view import GoalPick, Overlay, SceneView, SegmentPick, is_object
 from jackpy.ui.undo import UndoStack
@@ -367,6 +367,10 @@ class App:
         """The behavior loop of each standard human in the scene, by figure name."""
         self._settle = 0
         self.last_report: FrameReport | None = None
+        self.sensor_drive: object | None = None
+        """A :class:`~jackpy.behaviors.sensor_drive.SensorDrive` (Devices panel), if connected."""
+        self.driving = False
+        """While True every frame runs one sensor-drive frame (the sensors move the figure)."""
         self.set_environment(env)
 
     # ------------------------------------------------------------------ scene
@@ -462,7 +466,8 @@ class App:
 
     def restore(self, snap: Snapshot) -> None:
         """Put back a captured state exactly (no solve follows)."""
-        if snap.figures is not None:
+        if snap.figures is not None:  # the scene's figures exactly (an import undone drops its object)
+            self.env.figures.clear()
             for name, fig in snap.figures.items():
                 self.env.figures[name] = copy.deepcopy(fig)
         for name, (q, loc, root) in snap.postures.items():
@@ -728,12 +733,12 @@ class App:
                 continue
             try:
                 anatomy = human_anatomy(fig)
-            except Exception:  # not the standard human's structure: plain IK only
+            except (JackpyError, KeyError, ValueError, IndexError):  # not the standard human: plain IK only
                 continue
             q, loc, root = fig.q.copy(), fig.location.copy(), fig.root
             try:
                 self.loops[fig.name] = BehaviorLoop(fig, anatomy)
-            except Exception as exc:  # noqa: BLE001 - an odd figure: plain IK, and say why
+            except Exception as exc:
                 fig.root, fig.q, fig.location = root, q, loc
                 fig.topology_changed()
                 self.info(f"{fig.name}: no behaviors ({exc})")
@@ -794,6 +799,56 @@ class App:
                 manipulation.move_head(loop, point)
         self._settle = 0
 
+    def set_behaviors_enabled(self, on: bool) -> None:
+        """Switch between the behaviors and plain IK for the humans' goals."""
+        if on == self.settings.behaviors:
+            return
+        self.settings.behaviors = on
+        for name in self.loops:
+            self.sync_behaviors(name)
+        self.goals_changed()
+        self.info("behaviors on" if on else "behaviors off: plain IK")
+
+    def rescale_figure(self, name: str, sex: str, percentile: float, population: str = "ansur2") -> None:
+        """Give human ``name`` another body in place (:func:`~jackpy.body.human.rescale_in_place`),
+        keeping its posture, then re-solve its goals. One undo step; errors go to the log and leave
+        the figure as it was."""
+        from jackpy.body.human import rescale_in_place
+
+        fig = self.env.figure(name)
+        before = self.capture(structural=True)
+        try:
+            rescale_in_place(fig, sex, percentile, population)
+        except (JackpyError, ValueError, KeyError) as exc:
+            self.restore(before)
+            self.info(f"error: rescale {name}: {exc}")
+            return
+        self.undo_stack.push(f"rescale {name} to {sex} P{percentile:g}", before)
+        eff = find_effectors(fig)
+        for g in self.goals:  # planted feet stay planted where the new feet stand
+            if g.figure == name and g.site in (eff.get("left_foot"), eff.get("right_foot")):
+                w = fig.site_world(*g.site.split(".", 1))
+                g.target, g.offset = w.copy(), w[:3, :3].copy()
+                g.manip = np.eye(4)
+                g.manip[:3, 3] = w[:3, 3]
+        self.make_loops()  # new sites and footprints; feet re-planted where they now stand
+        self.goals_changed()
+        self.info(f"rescaled {name} to {sex} P{percentile:g} ({population})")
+
+    def import_cad(self, path: str | Path, units: str = "m", up: str = "y") -> bool:
+        """Add a CAD file (one undo step); an error goes to the log and leaves the scene untouched."""
+        from jackpy.ui import session
+
+        before = self.capture(structural=True)
+        try:
+            obj = session.import_cad_file(self, path, units, up)
+        except (JackpyError, OSError, ValueError) as exc:
+            self.info(f"error: import {Path(path).name}: {exc}")
+            return False
+        self.undo_stack.push(f"import {obj.name}", before)
+        self.dirty = True
+        return True
+
     def end_behavior_drag(self) -> None:
         """Mouse release: :func:`~jackpy.behaviors.manipulation.end_drag` on every loop."""
         for loop in self.loops.values():
@@ -803,7 +858,17 @@ class App:
     def step(self) -> FrameStats:
         """One frame after the input handlers ran: solve if goals changed, then draw."""
         stats = FrameStats()
-        if self.needs_solve:
+        if self.driving and self.sensor_drive is not None:
+            t0 = time.perf_counter()
+            try:
+                report = self.sensor_drive.step()  # type: ignore[attr-defined]
+                self.last_report = report.loop or self.last_report
+            except JackpyError as exc:
+                self.driving = False
+                self.info(f"error: sensor drive stopped: {exc}")
+            stats.solve_s = time.perf_counter() - t0
+            self.dirty = True
+        elif self.needs_solve:
             t0 = time.perf_counter()
             stats.iterations, settled = self.solve()
             stats.solve_s = time.perf_counter() - t0

@@ -14,7 +14,7 @@ if TYPE_CHECKING:
     from jackpy.ui.panels import UiState
 
 PROMPTS = {"open": "Open scene (.env)", "save_as": "Save scene as (.env)",
-           "import": "Import CAD (stl, obj, ply, glb ...)", "screenshot": "Save screenshot (.png)"}
+           "import": "Import CAD (stl, obj, ply, glb, 3mf, dae, step ...)", "screenshot": "Save screenshot (.png)"}
 
 
 def draw(app: "App", ui: "UiState") -> None:
@@ -95,6 +95,8 @@ def _draw_prompt(app: "App", ui: "UiState") -> None:
         imgui.text(PROMPTS[ui.prompt])
         imgui.set_next_item_width(420)
         done, ui.prompt_text = imgui.input_text("##path", ui.prompt_text, imgui.InputTextFlags_.enter_returns_true)
+        if ui.prompt == "import":
+            _import_options(ui)
         done = imgui.button("OK") or done
         imgui.same_line()
         cancel = imgui.button("Cancel")
@@ -103,8 +105,7 @@ def _draw_prompt(app: "App", ui: "UiState") -> None:
             actions = {
                 "open": lambda: session.open_session(app, path),
                 "save_as": lambda: session.save_session(app, path),
-                "import": lambda: app.command(f"import {path.name}", lambda: session.import_cad_file(app, path),
-                                              structural=True),
+                "import": lambda: app.import_cad(path, ui.import_units, ui.import_up),
                 "screenshot": lambda: screenshot.save_view(app, path),
             }
             _run(app, actions[kind])
@@ -112,6 +113,21 @@ def _draw_prompt(app: "App", ui: "UiState") -> None:
             ui.prompt = None
             imgui.close_current_popup()
         imgui.end_popup()
+
+
+IMPORT_UNITS = ["mm", "cm", "m", "in"]
+IMPORT_UP = ["y", "z"]
+
+
+def _import_options(ui: "UiState") -> None:
+    """Units and up axis of the file to import (remembered for the next import)."""
+    imgui.set_next_item_width(80)
+    i = IMPORT_UNITS.index(ui.import_units) if ui.import_units in IMPORT_UNITS else 2
+    ui.import_units = IMPORT_UNITS[imgui.combo("units", i, IMPORT_UNITS)[1]]
+    imgui.same_line()
+    imgui.set_next_item_width(60)
+    i = IMPORT_UP.index(ui.import_up) if ui.import_up in IMPORT_UP else 0
+    ui.import_up = IMPORT_UP[imgui.combo("up axis", i, IMPORT_UP)[1]]
 
 
 def _draw_recovery(app: "App", ui: "UiState") -> None:
