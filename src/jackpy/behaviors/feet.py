@@ -32,6 +32,8 @@ UP = np.array([0.0, 1.0, 0.0])
 class FeetParams:
     weight: float = param(10.0, "weight of the toe and heel constraints", "", (0.0, 1e4))
     level: int = param(0, "priority level of the feet goals (0 = highest)", "", (0, 3))
+    anchor_rate: float = param(0.003, "largest correction per frame of a rooting foot off its planted goal",
+                               "mm", (0.0, 0.1))
 
 
 class Feet(BehaviorBase):
@@ -45,6 +47,7 @@ class Feet(BehaviorBase):
 
     def update(self, frame: "Frame") -> None:
         st, p = frame.state, self.params
+        self._anchor_root(frame)
         for side, spec in frame.anatomy.feet.items():
             if side == st.root:
                 continue
@@ -62,6 +65,23 @@ class Feet(BehaviorBase):
                 heel = frame.loop.heel_point(side, fs.target)
                 frame.body.append((Plane(f"{spec.heel[0]}.{spec.heel[1]}", heel, UP, weight=p.weight,
                                          name=f"heel {side}"), p.level))
+
+    def _anchor_root(self, frame: "Frame") -> None:
+        """The IK cannot move the root ([SH4] §4.1.2), so a rooting foot that is off its planted
+        goal (a foot rooted while the IK still trailed it) would stay off for good: move the
+        figure, at most ``anchor_rate`` per frame, until the root foot's ball is on its goal."""
+        st = frame.state
+        if st.root not in frame.anatomy.feet:
+            return
+        spec = frame.anatomy.feet[st.root]
+        err = st.feet[st.root].target[:3, 3] - frame.site(*spec.ball)[:3, 3]
+        n = float(np.linalg.norm(err))
+        if n < 1e-7:
+            return
+        loc = frame.figure.location.copy()
+        loc[:3, 3] += err * min(1.0, self.params.anchor_rate / n)
+        frame.figure.location = loc
+        frame._refresh()
 
     def finish(self, frame: "Frame") -> None:
         for side, spec in frame.anatomy.feet.items():

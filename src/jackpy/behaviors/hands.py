@@ -35,6 +35,8 @@ if TYPE_CHECKING:
 
 UP = np.array([0.0, 1.0, 0.0])
 REGIONS = ("down", "forward", "side", "across")
+#: how far inside the support polygon's edge (m) a lean leaves the balance point
+LEAN_INSIDE = 0.005
 
 
 @dataclass
@@ -167,7 +169,18 @@ class Hands(BehaviorBase):
             miss = hs.goal[:3, 3] - palm[:3, 3]
             if np.linalg.norm(miss) > 0.01 and self._beyond_reach(frame, side, hs.goal[:3, 3]):
                 d = floor(miss)
+                bf = frame.balance_frame()
                 if np.linalg.norm(d) > 1e-6:
-                    b = st.balance_point + p.lean_rate * d / np.linalg.norm(d)
-                    st.balance = frame.balance_frame().params(b)
+                    b0 = st.balance_point
+                    step = p.lean_rate * d / np.linalg.norm(d)
+                    b = b0 + step
+                    # the weight never leaves the feet by leaning: it stops LEAN_INSIDE inside the
+                    # polygon's edge (stepping, when on, fires before that and widens the base)
+                    if bf.margin(b) > -LEAN_INSIDE and bf.margin(b) > bf.margin(b0):
+                        lo, hi = 0.0, 1.0
+                        for _ in range(12):
+                            mid = 0.5 * (lo + hi)
+                            lo, hi = (mid, hi) if bf.margin(b0 + mid * step) <= -LEAN_INSIDE else (lo, mid)
+                        b = b0 + lo * step
+                    st.balance = bf.params(b)
                     st.balance_point = b

@@ -51,6 +51,10 @@ class SteppingParams:
     max_step: float = param(0.7, "longest step as a fraction of leg length", "", (0.1, 1.2))
     min_width: float = param(0.12, "least sideways distance between the feet after a step", "cm", (0.0, 0.5))
     refractory: int = param(2, "frames after a step before another may start", "", (0, 100))
+    settle: int = param(6, "extra frames a step may take for the foot to reach the floor before it lands",
+                        "", (0, 50))
+    land_tolerance: float = param(0.001, "distance from its end pose at which the swing foot has landed",
+                                  "mm", (1e-4, 0.02))
 
 
 @dataclass
@@ -165,9 +169,10 @@ class Stepping(BehaviorBase):
     def _advance(self, frame: "Frame") -> None:
         st, s = frame.state, self.step
         s.k += 1
-        u = _smooth(s.k / s.frames)
+        k = min(s.k, s.frames)  # settling frames hold the end pose
+        u = _smooth(k / s.frames)
         pose = _yaw_rotate(s.start, s.turn * u)
-        pose[:3, 3] = (1 - u) * s.start[:3, 3] + u * s.end[:3, 3] + Y * s.height * np.sin(np.pi * s.k / s.frames)
+        pose[:3, 3] = (1 - u) * s.start[:3, 3] + u * s.end[:3, 3] + Y * s.height * np.sin(np.pi * k / s.frames)
         fs = st.feet[s.side]
         fs.target = pose if s.k < s.frames else s.end.copy()
         if st.com_drag is None:
@@ -179,6 +184,12 @@ class Stepping(BehaviorBase):
         if s is None or s.k < s.frames:
             return
         st = frame.state
+        # land only on the floor: the IK may trail the arc's last frames (its budget is per frame),
+        # and a foot planted in the air would stay there once it roots the figure
+        spec = frame.anatomy.feet[s.side]
+        miss = float(np.linalg.norm(frame.site(*spec.ball)[:3, 3] - s.end[:3, 3]))
+        if miss > self.params.land_tolerance and s.k < s.frames + self.params.settle:
+            return
         fs = st.feet[s.side]
         fs.mode, fs.heel = s.saved
         fs.target = s.end.copy()
