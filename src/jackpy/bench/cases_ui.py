@@ -1,8 +1,8 @@
-"""Benchmark row ``ui-frame``: one workbench frame (IK solve + draw) while a hand is dragged.
+"""Benchmark row ``ui-frame``: one workbench frame (behaviors + IK, then draw) while a hand is dragged.
 
-The default scene is drawn offscreen (EGL) at 1280x800 while the right hand is dragged back and
-forth through the App's own mouse handlers; each timed call is one frame: a cursor move, the
-time-boxed IK solve, the draw and ``ctx.finish()`` (so GPU time counts). The row's median is the
+The default scene (the 50th-percentile male, chair, work table) is drawn offscreen (EGL) at
+1280x800 while the right hand is dragged back and forth through the App's own mouse handlers; each
+timed call is one frame: a cursor move, the time-boxed behavior frames (``BehaviorLoop.step``), the draw and ``ctx.finish()`` (so GPU time counts). The row's median is the
 plain default scene; ``with_cad_*`` repeats it with a 100k-triangle CAD object in the scene.
 """
 
