@@ -90,3 +90,78 @@ def _slerp(r0: np.ndarray, r1: np.ndarray, u: float) -> np.ndarray:
     d = r1 @ r0.T
     angle = float(np.arccos(np.clip((np.trace(d) - 1.0) / 2.0, -1.0, 1.0)))
     return turn_towards(r0, r1, u * angle)[0]
+
+
+def _reach_forward(stepping: bool, frames: int = 100):
+    lp = human_loop()
+    fig, a = lp.figure, lp.anatomy
+    lp.behavior("stepping").enabled = stepping
+    h = a.hands["right"]
+    target = fig.site_world(*h.shoulder)[:3, 3] + np.array([0.0, -0.1, 1.3])  # ~0.7 m beyond the arm
+    palm = fig.site_world(*h.palm)[:3, 3].copy()
+    com0 = fig.centre_of_mass()
+    lean_before_step, notes = None, []
+    for i in range(frames):
+        u = min(1.0, (i + 1) / 30)
+        m.move_hand(lp, "right", position=(1 - u) * palm + u * target, lean=True)
+        r = lp.step()
+        notes += r.notes
+        if lean_before_step is None and any(n.startswith("balance step") for n in r.notes):
+            lean_before_step = float(fig.centre_of_mass()[2] - com0[2])
+    miss = float(np.linalg.norm(fig.site_world(*h.palm)[:3, 3] - target))
+    return lp, miss, lean_before_step, notes
+
+
+def test_hand_beyond_reach_leans_then_steps_and_ends_balanced():
+    lp, miss, lean, notes = _reach_forward(stepping=True)
+    fig = lp.figure
+    assert lean is not None and lean > 0.03, "the body leans forward before the first step"
+    assert lp.state.steps_taken >= 1
+    assert lp.behavior("stepping").step is None
+    assert com_margin(lp) < -0.01, "ends balanced"
+    assert lp.figure.centre_of_mass()[2] > 0.2  # the figure went after the target
+    for s, spec in lp.anatomy.feet.items():  # landed feet are on the floor, flat
+        assert abs(fig.site_world(*spec.ball)[1, 3]) < 1e-3 and abs(fig.site_world(*spec.heel)[1, 3]) < 1e-3
+        assert np.linalg.norm(fig.site_world(*spec.ball)[:3, 3] - lp.state.feet[s].target[:3, 3]) < 1e-3
+    _, miss_planted, _, notes_planted = _reach_forward(stepping=False, frames=45)
+    assert not any("step" in n for n in notes_planted)
+    assert miss < 0.02 and miss < miss_planted - 0.1, (miss, miss_planted)
+
+
+def test_pelvis_twist_takes_a_pivot_step():
+    """behaviors.md §7 item 22: rotate the pelvis 1° per frame; near 45° relative to the feet the
+    lighter foot swings round, lands turned about 90°, and the pelvis-follows-feet behavior brings
+    the twist back under the threshold."""
+    from jackpy.behaviors.pelvis import feet_yaw, pelvis_yaw
+    from jackpy.behaviors.support import wrap
+
+    lp = human_loop()
+    fig, a = lp.figure, lp.anatomy
+    yaw0 = {s: lp.foot_yaw(s, f.target) for s, f in lp.state.feet.items()}
+    pel0 = fig.site_world(a.pelvis, a.pelvis_site)[:3, :3].copy()
+    fired_at, side = None, None
+    for i in range(1, 80):
+        m.move_pelvis(lp, rotation=rotation("y", np.radians(min(i, 60)))[:3, :3] @ pel0)
+        r = lp.step()
+        for n in r.notes:
+            if n.startswith("twist step:") and fired_at is None:
+                fired_at, side = i, n.split()[-2]
+        if fired_at is not None and lp.behavior("stepping").step is None and i > fired_at + 5:
+            break
+    assert fired_at is not None and 35 <= fired_at <= 50, fired_at
+    turned = np.degrees(wrap(lp.foot_yaw(side, lp.state.feet[side].target) - yaw0[side]))
+    assert 80.0 <= abs(turned) <= 100.0, turned
+    other = "left" if side == "right" else "right"
+    assert abs(np.degrees(wrap(lp.foot_yaw(other, lp.state.feet[other].target) - yaw0[other]))) < 10.0
+    m.end_drag(lp)  # the user lets go: P3 turns the pelvis to the feet
+    frame = None
+    for _ in range(40):
+        lp.step()
+    from jackpy.behaviors.loop import Frame
+
+    frame = Frame(lp)
+    twist = wrap(pelvis_yaw(frame, fig.site_world(a.pelvis, a.pelvis_site)[:3, :3]) - feet_yaw(frame))
+    assert abs(np.degrees(twist)) < 40.0
+    assert com_margin(lp) < 0.0
+    for s, spec in a.feet.items():
+        assert abs(fig.site_world(*spec.ball)[1, 3]) < 1e-3

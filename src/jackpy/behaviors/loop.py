@@ -369,9 +369,11 @@ class BehaviorLoop:
             if frame.com_goal is None:
                 break
             c = self.posture()[1]
-            com_err = float(np.hypot(c[0] - frame.com_goal[0], c[2] - frame.com_goal[2]))
+            prev, com_err = com_err, float(np.hypot(c[0] - frame.com_goal[0], c[2] - frame.com_goal[2]))
             if com_err <= self.com_tolerance:
                 break
+            if passes > 1 and com_err > 0.5 * prev:
+                break  # the body's goals hold the COM off (a lean, a limit): another pass won't help
         return passes, com_err, errors
 
     def _reuse(self, which: str, goal: Goal) -> Goal:

@@ -122,18 +122,27 @@ class Stepping(BehaviorBase):
     def twist_step(self, frame: "Frame") -> Step | None:
         """The A2 step when the pelvis is twisted past the threshold, else None."""
         st, a = frame.state, frame.anatomy
-        twist = wrap(pelvis_yaw(frame, frame.site(a.pelvis, a.pelvis_site)[:3, :3]) - feet_yaw(frame))
-        if abs(twist) <= self.params.twist_threshold:
-            return None
+        pel = pelvis_yaw(frame, frame.site(a.pelvis, a.pelvis_site)[:3, :3])
+        # [proposal] relative to the rooted (stance) foot when there is one: a pivoting free foot
+        # turns along with the pelvis, so the mean of the feet would see only half the twist
+        ref_yaw = (frame.loop.foot_yaw(st.root, st.feet[st.root].target) if st.root in st.feet
+                   else feet_yaw(frame))
+        twist = wrap(pel - ref_yaw)
+        if abs(twist) <= self.params.twist_threshold or abs(wrap(pel - feet_yaw(frame))) <= self.params.twist_threshold / 2:
+            return None  # (the second test: the feet already straddle the pelvis, e.g. after a pivot step)
         x, _ = st.balance
         swing = "right" if x < 0.5 else "left"
         other = OTHER[swing]
+        if st.root in st.feet and st.root != OTHER[swing]:
+            swing, other = OTHER[st.root], st.root
         turn = float(np.sign(twist)) * np.pi / 2
         ref = {s: frame.loop.foot_reference(s, f.target) for s, f in st.feet.items()}
         off = ref[swing] - ref[other]
         c, s = np.cos(turn), np.sin(turn)
         new_ref = ref[other] + np.array([c * off[0] + s * off[1], -s * off[0] + c * off[1]])
-        end = _yaw_rotate(st.feet[swing].target, turn)
+        # the swing foot lands turned 90° from the stance foot (it may have pivoted part-way already)
+        have = wrap(frame.loop.foot_yaw(swing, st.feet[swing].target) - frame.loop.foot_yaw(other, st.feet[other].target))
+        end = _yaw_rotate(st.feet[swing].target, wrap(turn - have))
         now_ref = frame.loop.foot_reference(swing, end)
         end[[0, 2], 3] += new_ref - now_ref
         return self._start(frame, swing, "twist", end)
