@@ -25,6 +25,7 @@ from typing import Any
 
 import numpy as np
 
+from jackpy import jsonfile
 from jackpy.devices.flock.driver import Sample
 from jackpy.devices.flock.protocol import Format, Record, angles_from_rotation
 from jackpy.errors import DeviceError, ParseError
@@ -145,38 +146,87 @@ class Recording:
 
 
 def read_recording(path: str | os.PathLike) -> Recording:
-    """Read a recording; a malformed line raises :class:`ParseError` (a torn last line is skipped)."""
+    """Read a recording; a malformed line raises :class:`ParseError` at its line (a torn last
+    line is skipped); an unreadable file raises :class:`DeviceError`.
+
+    Each sample is checked: finite time >= 0, bird 0..126, a known record format with its number
+    of 16-bit words, a finite positive scale, button and metal bytes 0..255 or null. The header's
+    fields the replay commands use (``figure``, ``calibrate_frame``, ``sensors``) are checked too.
+    """
     name = str(path)
     try:
-        text = Path(path).read_text(encoding="utf-8")
+        data = Path(path).read_bytes()
     except OSError as exc:
-        raise DeviceError(f"cannot read recording {name}: {exc.strerror}") from None
-    except UnicodeDecodeError:
-        raise ParseError("not a text file", name, 1, 1) from None
+        raise DeviceError(f"cannot read recording {name}: {exc.strerror or exc}") from None
+    except ValueError:  # a name with a NUL byte
+        raise DeviceError(f"cannot read recording {name!r}: not a valid file name") from None
+    text = jsonfile.decode(data, name)
     lines = text.split("\n")
     torn = lines[-1] != ""  # no final newline: the last line may have been cut by a crash
     lines = lines[:-1] if not torn else lines
     try:
-        header = json.loads(lines[0]) if lines else None
-    except json.JSONDecodeError:
+        header = jsonfile.loads(lines[0], name) if lines else None
+    except ParseError:
         header = None
     if not isinstance(header, dict) or header.get("jackpy") != MAGIC:
         raise ParseError("not a jackpy Flock recording (bad header line)", name, 1, 1)
+    try:
+        _check_header(header)
+    except jsonfile.Invalid as exc:
+        raise ParseError(f"bad header: {exc}", name, 1, 1) from None
     samples = []
     for k, line in enumerate(lines[1:], start=2):
         try:
-            t, bird, seq, fmt, scale, words, button, metal = json.loads(line)
-            fm = Format(ord(fmt))
-            if len(words) != fm.words or not all(-32768 <= w <= 32767 for w in words):
-                raise ValueError(f"{fm.name.lower()} needs {fm.words} words in -32768..32767")
-            rec = Record(fm, tuple(int(w) for w in words), float(scale), button, metal, int(bird))
-            samples.append(Sample(int(bird), rec, float(t), int(seq)))
-        except (ValueError, TypeError) as exc:
+            samples.append(_sample(jsonfile.loads(line, name, line=k)))
+        except (ParseError, jsonfile.Invalid) as exc:
             if torn and k == len(lines):
                 break
-            col = exc.colno if isinstance(exc, json.JSONDecodeError) else 1
-            raise ParseError(f"bad sample line: {exc}", name, k, col) from None
+            if isinstance(exc, ParseError):
+                raise ParseError(f"bad sample line: {exc.message}", name, k, exc.column) from None
+            raise ParseError(f"bad sample line: {exc}", name, k, 1) from None
     return Recording(header, samples)
+
+
+def _check_header(header: dict[str, Any]) -> None:
+    if "figure" in header:
+        fig = jsonfile.obj(header["figure"], "figure")
+        if "sex" in fig:
+            jsonfile.string(fig["sex"], "figure.sex", ("male", "female"))
+        if "percentile" in fig:
+            jsonfile.num(fig["percentile"], "figure.percentile", 1.0, 99.0)
+    if "calibrate_frame" in header:
+        jsonfile.integer(header["calibrate_frame"], "calibrate_frame", 0, 2**31 - 1)
+    if "sensors" in header:
+        jsonfile.obj(header["sensors"], "sensors")
+
+
+def _sample(row: Any) -> Sample:
+    """One sample line ``[t, bird, seq, format, scale, [words...], button, metal]`` (module doc)."""
+    row = jsonfile.arr(row, "sample")
+    if len(row) != 8:
+        raise jsonfile.Invalid("sample", f"expected 8 values [t, bird, seq, format, scale, words, button, "
+                                         f"metal], found {len(row)}")
+    t = jsonfile.num(row[0], "t", 0.0)
+    bird = jsonfile.integer(row[1], "bird", 0, 126)
+    seq = jsonfile.integer(row[2], "seq", -2**63, 2**63 - 1)
+    letter = jsonfile.string(row[3], "format")
+    try:
+        fm = Format(ord(letter)) if len(letter) == 1 else None
+    except ValueError:
+        fm = None
+    if fm is None:
+        raise jsonfile.Invalid("format", "expected a record format letter ("
+                               + ", ".join(chr(f.value) for f in Format) + f"), found {letter[:10]!r}")
+    scale = jsonfile.num(row[4], "scale")
+    if scale <= 0:
+        raise jsonfile.Invalid("scale", f"expected a positive number, found {scale:g}")
+    words = jsonfile.arr(row[5], "words")
+    if len(words) != fm.words:
+        raise jsonfile.Invalid("words", f"{fm.name.lower()} needs {fm.words} words, found {len(words)}")
+    words = [jsonfile.integer(w, f"words[{i}]", -32768, 32767) for i, w in enumerate(words)]
+    button, metal = (None if v is None else jsonfile.integer(v, what, 0, 255)
+                     for v, what in ((row[6], "button"), (row[7], "metal")))
+    return Sample(bird, Record(fm, tuple(words), scale, button, metal, bird), t, seq)
 
 
 def replay(recording: Recording, speed: float = 1.0) -> Iterator[dict[int, Sample]]:

@@ -19,7 +19,6 @@ base of the neck -> neck, palms -> left/right palm sites.
 
 from __future__ import annotations
 
-import json
 import math
 import os
 from collections.abc import Mapping
@@ -27,6 +26,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from jackpy import jsonfile
 from jackpy.devices.filters import OneEuroPoseFilter
 from jackpy.devices.flock.driver import Sample
 from jackpy.devices.flock.protocol import Record
@@ -80,33 +80,39 @@ def load_sensor_config(path: str | os.PathLike) -> SensorConfig:
     """
     name = str(path)
     try:
-        data = json.loads(open(path, encoding="utf-8").read())
+        data = jsonfile.load(path, ParseError)
     except OSError as exc:
-        raise DeviceError(f"cannot read sensor configuration {name}: {exc.strerror}") from None
-    except json.JSONDecodeError as exc:
-        raise ParseError(exc.msg, name, exc.lineno, exc.colno) from None
+        raise DeviceError(f"cannot read sensor configuration {name}: {exc.strerror or exc}") from None
+    except ValueError:  # a name with a NUL byte
+        raise DeviceError(f"cannot read sensor configuration {name!r}: not a valid file name") from None
     return sensor_config_from_dict(data, name)
 
 
 def sensor_config_from_dict(data: Mapping, name: str = "<sensor configuration>") -> SensorConfig:
     """A :class:`SensorConfig` from the JSON object of :func:`load_sensor_config` (e.g. one kept in
-    a recording's header); errors raise :class:`ParseError` naming ``name``."""
+    a recording's header); errors raise :class:`ParseError` naming ``name`` and the key path
+    (``sensors[1].bird: expected an integer in 0..126, found 200``)."""
     try:
-        tx = data.get("transmitter", {})
-        world = _transform(tx.get("position_m", [0, 0, 0]), [0, tx.get("yaw_deg", 0.0), 0])
+        data = jsonfile.obj(data, "")
+        tx = jsonfile.obj(data.get("transmitter", {}), "transmitter")
+        world = _transform(jsonfile.vector(tx.get("position_m", [0, 0, 0]), "transmitter.position_m", 3),
+                           [0, jsonfile.num(tx.get("yaw_deg", 0.0), "transmitter.yaw_deg"), 0])
         mounts = []
-        for s in data["sensors"]:
-            off = s.get("offset", {})
-            bird, part = int(s["bird"]), str(s["part"])
-            if not 0 <= bird <= 126:
-                raise ValueError(f"bird address {bird} is not 0..126")
-            mounts.append(SensorMount(bird, part, _transform(off.get("position_m", [0, 0, 0]),
-                                                             off.get("rotation_deg", [0, 0, 0]))))
+        for k, s in enumerate(jsonfile.arr(jsonfile.required(data, "sensors", ""), "sensors")):
+            where = f"sensors[{k}]"
+            s = jsonfile.obj(s, where)
+            off = jsonfile.obj(s.get("offset", {}), f"{where}.offset")
+            bird = jsonfile.integer(jsonfile.required(s, "bird", where), f"{where}.bird", 0, 126)
+            part = jsonfile.string(jsonfile.required(s, "part", where), f"{where}.part")
+            mounts.append(SensorMount(bird, part, _transform(
+                jsonfile.vector(off.get("position_m", [0, 0, 0]), f"{where}.offset.position_m", 3),
+                jsonfile.vector(off.get("rotation_deg", [0, 0, 0]), f"{where}.offset.rotation_deg", 3))))
         if len({m.bird for m in mounts}) != len(mounts) or len({m.part for m in mounts}) != len(mounts):
-            raise ValueError("each bird and each part may appear once")
-        return SensorConfig(mounts, world, bool(data.get("conjugate_quaternion", True)))
-    except (KeyError, TypeError, ValueError, AttributeError) as exc:
-        raise ParseError(f"bad sensor configuration: {exc!s}", name, 1, 1) from None
+            raise jsonfile.Invalid("sensors", "each bird and each part may appear once")
+        conjugate = jsonfile.boolean(data.get("conjugate_quaternion", True), "conjugate_quaternion")
+        return SensorConfig(mounts, world, conjugate)
+    except jsonfile.Invalid as exc:
+        raise jsonfile.schema_error(ParseError, name, exc) from None
 
 
 def _transform(position, rotation_deg) -> np.ndarray:

@@ -32,7 +32,9 @@ def parse_psurf(text: str, filename: str = "<string>") -> Mesh:
     """Parse ``.pss`` text into a triangle mesh in metres; ParseError with line and column."""
     vertices: list[tuple[float, float, float]] = []
     faces: list[tuple[int, int, int]] = []
-    for lineno, raw in enumerate(text.splitlines(), start=1):
+    # only "\n" ends a line (as an editor counts them; str.splitlines also splits at form feeds,
+    # U+2028 and other separators, which would shift every reported line number)
+    for lineno, raw in enumerate(text.split("\n"), start=1):
         line = raw
         for marker in ("#", "//"):
             cut = line.find(marker)
@@ -68,7 +70,9 @@ def parse_psurf(text: str, filename: str = "<string>") -> Mesh:
                                  len(line.rstrip()) + 1)
             idx = []
             for word, col in args:
-                if not (word.isascii() and word.isdigit()) or not 1 <= int(word) <= len(vertices):
+                # (a bounded length first: int() refuses strings of more than 4300 digits)
+                if (not (word.isascii() and word.isdigit()) or len(word) > 18
+                        or not 1 <= int(word) <= len(vertices)):
                     raise ParseError(f"expected a vertex index in 1..{len(vertices)}, found {word!r}",
                                      filename, lineno, col)
                 idx.append(int(word) - 1)
@@ -79,8 +83,16 @@ def parse_psurf(text: str, filename: str = "<string>") -> Mesh:
 
 
 def read_psurf(path: str | os.PathLike[str]) -> Mesh:
-    """Read a ``.pss`` file (centimetres) into a mesh in metres."""
-    return parse_psurf(Path(path).read_text(encoding="utf-8"), str(path))
+    """Read a ``.pss`` file (centimetres) into a mesh in metres; text that is not UTF-8 raises
+    ParseError at the first bad byte."""
+    data = Path(path).read_bytes()
+    try:
+        text = data.decode("utf-8")
+    except UnicodeDecodeError as exc:
+        before = data[:exc.start]
+        raise ParseError("expected UTF-8 text", str(path), before.count(b"\n") + 1,
+                         exc.start - (before.rfind(b"\n") + 1) + 1) from None
+    return parse_psurf(text, str(path))
 
 
 #: vertices are written rounded to this many decimals of a centimetre (1 micrometre): far below any

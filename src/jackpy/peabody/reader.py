@@ -14,14 +14,16 @@ rewritten accordingly).
 
 from __future__ import annotations
 
+import errno
 import math
 import os
+import stat
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
-from jackpy.errors import FigureError, ParseError
+from jackpy.errors import FigureError, ImportCADError, ParseError
 from jackpy.peabody.geometry import Mesh, Psurf
 from jackpy.peabody.groups import JointGroup, LinearDriver
 from jackpy.peabody.lexer import EOF, IDENT, NUMBER, STRING, Token, TokenStream, tokenize
@@ -511,6 +513,17 @@ class _Parser:
 
 
 def _read_text(path: str | os.PathLike[str]) -> str:
+    """The UTF-8 text of a regular file; OSError for anything else (a folder, a device such as
+    ``/dev/zero`` that would never end, a name with a NUL byte); ParseError at the first byte that
+    is not UTF-8."""
+    try:
+        info = os.stat(path)
+    except ValueError:  # an embedded NUL byte
+        raise OSError(errno.EINVAL, "not a valid file name") from None
+    if stat.S_ISDIR(info.st_mode):
+        raise IsADirectoryError(errno.EISDIR, "a folder, not a file", str(path))
+    if not stat.S_ISREG(info.st_mode):
+        raise OSError(errno.EINVAL, "not a regular file", str(path))
     data = Path(path).read_bytes()
     try:
         return data.decode("utf-8")
@@ -519,6 +532,14 @@ def _read_text(path: str | os.PathLike[str]) -> str:
         line = before.count(b"\n") + 1
         column = exc.start - (before.rfind(b"\n") + 1) + 1
         raise ParseError("expected UTF-8 text", str(path), line, column) from None
+
+
+def _is_file(path: Path) -> bool:
+    """``path.is_file()`` that is False, not an error, for any name the system refuses (too long...)."""
+    try:
+        return stat.S_ISREG(os.stat(path).st_mode)
+    except (OSError, ValueError):
+        return False
 
 
 def _validate(figures: list[Figure], filename: str) -> None:
@@ -563,12 +584,18 @@ def load_geometry(figures: list[Figure], base_dir: str | os.PathLike[str], *, re
                 continue
             path = Path(base_dir) / seg.psurf.source
             if path not in cache:
-                if not path.is_file():
+                if not _is_file(path):
                     if not require:
                         continue
                     raise FigureError(f"{filename}: figure {fig.name!r} segment {seg.name!r}: geometry file "
                                       f"{seg.psurf.source!r} not found (looked for {path})")
-                cache[path] = load_mesh(path)
+                try:
+                    cache[path] = load_mesh(path)
+                except ImportCADError as exc:  # (a malformed .pss raises ParseError at its own line)
+                    raise ImportCADError(f"{filename}: figure {fig.name!r} segment {seg.name!r}: {exc}") from None
+                except OSError as exc:
+                    raise FigureError(f"{filename}: figure {fig.name!r} segment {seg.name!r}: cannot read "
+                                      f"geometry file {seg.psurf.source!r}: {exc.strerror or exc}") from None
             mesh = cache[path]
             seg.psurf.mesh = Mesh(mesh.vertices.copy(), mesh.faces.copy())
 
