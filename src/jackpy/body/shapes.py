@@ -1,17 +1,21 @@
 """Segment surfaces generated from the body dimensions: lofted superellipse sections, closed meshes.
 
 Every shape is built in world coordinates of the zero pose (see :mod:`jackpy.body.skeleton`) as rings
-of superellipse cross-sections along a path, closed at both ends (rounded or flat caps), then moved
-into its segment's frame. The torso is one profile (width, depth, centre as functions of height,
-through the hip, waist, chest, armpit and neck-base measurements) cut into one slab per vertebra;
-limbs taper between their proximal and distal measurements with muscle bulges; the head is a
-displaced ellipsoid with a nose, brow, eye sockets, ears and a narrower jaw; hands have a rounded palm
-and capsule fingers; the feet are shoe-shaped. About 20k triangles for the whole body.
+of cross-sections along a path, closed at both ends (primitives in :mod:`jackpy.body.mesh_loft`), then
+moved into its segment's frame. The torso is one smooth profile (monotone cubic through the hip, waist,
+chest, armpit and neck-base measurements) with sex-specific bumps (breasts or pectorals, buttocks,
+shoulder blades), cut into one slab per vertebra; each slab reaches into its neighbours with sections a
+little inside theirs, so bending the spine opens no gaps and nothing z-fights. Limbs taper between their
+proximal and distal measurements with muscle bulges; the head is a superellipsoid with a flat face, jaw,
+brow, eye sockets, nose, cheekbones, lips, chin and ears; the hand is a rounded palm box of the hand
+breadth and thickness with tapered phalanges and a thick thenar thumb; the feet are shoe-shaped.
+About 28-30k triangles for the whole body.
 """
 
 from __future__ import annotations
 
 import numpy as np
+from scipy.interpolate import PchipInterpolator
 
 from jackpy.body.sass import BodySpec
 from jackpy.body.skeleton import (
@@ -22,191 +26,166 @@ from jackpy.body.skeleton import (
     SIDES,
     Skeleton,
 )
+from jackpy.body.mesh_loft import basis as _basis  # noqa: F401 - kept for callers of the old name
+from jackpy.body.mesh_loft import limb, merge, signed_volume, superellipse_ring, superellipse_unit, tube
 from jackpy.peabody.geometry import Mesh
+
+__all__ = ["ATTRIBUTES", "body_shapes", "limb", "merge", "signed_volume", "superellipse_ring", "tube"]
 
 #: display attribute (X11 colour name) per body region
 ATTRIBUTES = {"skin": "peachpuff", "shirt": "steelblue", "trousers": "darkslategray",
               "shoe": "saddlebrown", "eye": "white"}
-AROUND_TORSO, AROUND_LIMB, AROUND_DIGIT = 28, 16, 10
+AROUND_TORSO, AROUND_LIMB, AROUND_DIGIT = 32, 16, 12
+#: torso slabs reach this fraction of the shorter neighbour's height into it, ending OVERLAP_INSET (m) inside
+#: its surface (never coincident with it, so no z-fighting)
+OVERLAP, OVERLAP_INSET = 0.45, 0.0012
 
 
-def superellipse_ring(centre: np.ndarray, u: np.ndarray, v: np.ndarray, ru: float, rv: float,
-                      n: int, exponent: float = 2.0) -> np.ndarray:
-    """``n`` points (n,3) of the superellipse ``|x/ru|^e + |y/rv|^e = 1`` in the plane (u, v) at ``centre``."""
-    a = np.linspace(0.0, 2 * np.pi, n, endpoint=False)
-    c, s = np.cos(a), np.sin(a)
-    k = 2.0 / exponent
-    cu = np.sign(c) * np.abs(c) ** k
-    sv = np.sign(s) * np.abs(s) ** k
-    return centre + np.outer(ru * cu, u) + np.outer(rv * sv, v)
+class _Torso:
+    """The torso surface: a smooth profile (half width, half depth, centre z as monotone cubic functions
+    of height through the hip, waist, chest, armpit and neck-base measurements) with superellipse
+    sections, plus sex-specific shaping (breasts or pectorals, buttocks, shoulder blades) as smooth
+    bumps pushed out along z. Every vertebral slab samples the same surface, so neighbours match."""
 
+    def __init__(self, spec: BodySpec, sk: Skeleton) -> None:
+        d = spec.dims
+        s = spec.stature / 1.756
+        female = spec.sex == "female"
+        yh = sk.points["hip_y"][1]
+        yt = sk.points["spine_top"][1]
+        hb, bd, wb, wd, cb, cd = (d[k] for k in ("hip.breadth", "buttock.depth", "waist.breadth",
+                                                 "waist.depth", "chest.breadth", "chest.depth"))
+        bust = 0.87 if female else 0.96  # chest depth taken by the base section (bumps add the rest)
+        seat = 0.9 if female else 0.93
+        rows = [  # y, full width, full depth, centre z
+            (yh - 0.085 * s, 0.62 * hb, 0.6 * bd, -0.01 * s),
+            (yh - 0.04 * s, 0.93 * hb, 0.86 * seat * bd, -0.015 * s),
+            (yh + 0.01 * s, hb, seat * bd, -0.02 * s),
+            (yh + 0.08 * s, 0.5 * (hb + wb), 0.5 * (seat * bd + wd), -0.01 * s),
+            (yh + 0.16 * s, wb, wd, 0.0),
+            (yt - 0.30 * s, 0.5 * (wb + cb), 0.5 * (wd + bust * cd), 0.0),
+            (yt - 0.21 * s, cb, bust * cd, 0.005 * s),
+            (yt - 0.13 * s, 1.03 * cb, 0.93 * cd, 0.0),
+            (yt - 0.06 * s, 0.95 * cb, 0.8 * cd, -0.01 * s),
+            (yt - 0.01 * s, 0.72 * cb, 0.62 * cd, -0.02 * s),
+            (yt + 0.02 * s, 1.15 * d["neck.breadth"], 1.05 * d["neck.breadth"], -0.02 * s),
+        ]
+        a = np.array(rows)
+        self.y0, self.y1 = float(a[0, 0]), float(a[-1, 0])
+        self._rx = PchipInterpolator(a[:, 0], a[:, 1] / 2)
+        self._rz = PchipInterpolator(a[:, 0], a[:, 2] / 2)
+        self._cz = PchipInterpolator(a[:, 0], a[:, 3])
+        # bumps: (x0, y0, half extent x, extent up, extent down, amount, +1 front / -1 back)
+        self.bumps: list[tuple[float, ...]] = []
+        for sx in (1.0, -1.0):
+            if female:
+                self.bumps.append((sx * 0.3 * cb, yt - 0.195 * s, 0.085 * s, 0.11 * s, 0.055 * s, 0.16 * cd, 1.0))
+            else:
+                self.bumps.append((sx * 0.27 * cb, yt - 0.15 * s, 0.085 * s, 0.08 * s, 0.06 * s, 0.045 * cd, 1.0))
+            self.bumps.append((sx * 0.2 * hb, yh - 0.005 * s, 0.1 * s, 0.1 * s, 0.06 * s,
+                               (0.12 if female else 0.09) * bd, -1.0))
+            self.bumps.append((sx * 0.22 * cb, yt - 0.12 * s, 0.07 * s, 0.07 * s, 0.07 * s, 0.03 * cd, -1.0))
+        self.cu, self.sv = superellipse_unit(AROUND_TORSO, 2.3)
 
-def tube(rings: np.ndarray, start: np.ndarray | None = None, end: np.ndarray | None = None) -> Mesh:
-    """Closed mesh from rings (m, n, 3): quads between rings, fans to ``start``/``end`` (default: flat caps).
+    def ring(self, y: float, inset: float = 0.0, lift: float = 0.0, scale: float = 1.0) -> np.ndarray:
+        """Section at height ``y``, moved ``inset`` metres inward (about) and shrunk toward its centre by
+        ``scale``, placed at ``y + lift``."""
+        yc = min(max(y, self.y0), self.y1)
+        rx, rz, cz = float(self._rx(yc)), float(self._rz(yc)), float(self._cz(yc))
+        x = rx * self.cu
+        z = rz * self.sv
+        for x0, y0, ex, up, down, amount, side in self.bumps:
+            q2 = ((x - x0) / ex) ** 2 + ((y - y0) / (up if y > y0 else down)) ** 2
+            facing = np.clip(side * self.sv * 1.6, 0.0, 1.0)
+            z = z + side * amount * np.clip(1.0 - q2, 0.0, None) ** 2 * facing
+        scale = scale * (1.0 - inset / (0.5 * (rx + rz)))
+        return np.column_stack([scale * x, np.full_like(x, y + lift), cz + scale * z])
 
-    Faces are oriented outward (counter-clockwise seen from outside).
-    """
-    if start is None:  # flat cap: a ring inset by 0.5 % keeps the cap out of the side normals
-        start = rings[0].mean(axis=0)
-        rings = np.concatenate([(start + 0.995 * (rings[0] - start))[None], rings])
-    if end is None:
-        end = rings[-1].mean(axis=0)
-        rings = np.concatenate([rings, (end + 0.995 * (rings[-1] - end))[None]])
-    m, n, _ = rings.shape
-    start, end = np.asarray(start, dtype=float), np.asarray(end, dtype=float)
-    verts = np.vstack([rings.reshape(-1, 3), start, end])
-    i = np.arange(n)
-    j = (i + 1) % n
-    faces = []
-    for r in range(m - 1):
-        a, b = r * n + i, r * n + j
-        c, d = (r + 1) * n + i, (r + 1) * n + j
-        faces += [np.stack([a, b, d], 1), np.stack([a, d, c], 1)]
-    s_idx, e_idx = m * n, m * n + 1
-    faces.append(np.stack([np.full(n, s_idx), j, i], 1))
-    faces.append(np.stack([np.full(n, e_idx), (m - 1) * n + i, (m - 1) * n + j], 1))
-    f = np.vstack(faces)
-    mesh = Mesh(verts, f)
-    if signed_volume(mesh) < 0:
-        mesh = Mesh(verts, f[:, ::-1].copy())
-    return mesh
-
-
-def signed_volume(mesh: Mesh) -> float:
-    """Signed volume (m^3) of a closed mesh; positive when its faces point outward."""
-    v = mesh.vertices[mesh.faces]
-    return float(np.einsum("ij,ij->i", v[:, 0], np.cross(v[:, 1], v[:, 2])).sum() / 6.0)
-
-
-def _basis(d: np.ndarray, hint: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Two unit vectors perpendicular to ``d``; the first as close to ``hint`` as possible."""
-    u = hint - np.dot(hint, d) * d
-    if np.linalg.norm(u) < 1e-9:
-        u = np.cross(d, [1.0, 0.0, 0.0] if abs(d[0]) < 0.9 else [0.0, 1.0, 0.0])
-    u = u / np.linalg.norm(u)
-    return u, np.cross(d, u)
-
-
-def limb(p0: np.ndarray, p1: np.ndarray, stations: list[tuple[float, float, float]], n: int = AROUND_LIMB,
-         hint: tuple[float, float, float] = (1.0, 0.0, 0.0), cap0: float = 1.0, cap1: float = 1.0,
-         offsets: list[tuple[float, float, float]] | None = None, exponent: float = 2.0) -> Mesh:
-    """A rounded limb from ``p0`` to ``p1``: ``stations`` are ``(t, r_u, r_v)`` (t in [0,1] along the
-    axis, radii along ``hint`` and across); ``cap0``/``cap1`` scale the rounded end caps (0 = flat);
-    ``offsets`` optionally shift each station's centre ``(t, du, dv)`` (interpolated)."""
-    p0, p1 = np.asarray(p0, dtype=float), np.asarray(p1, dtype=float)
-    axis = p1 - p0
-    length = np.linalg.norm(axis)
-    d = axis / length
-    u, v = _basis(d, np.asarray(hint, dtype=float))
-    st = np.array(stations, dtype=float)
-    ts = [st[0, 0]]
-    for a, b in zip(st[:-1, 0], st[1:, 0]):  # densify to ~2.5 cm steps
-        k = max(1, int(np.ceil((b - a) * length / 0.025)))
-        ts += list(np.linspace(a, b, k + 1)[1:])
-    ts = np.array(ts)
-    ru = np.interp(ts, st[:, 0], st[:, 1])
-    rv = np.interp(ts, st[:, 0], st[:, 2])
-    pos = ts * length
-    rings_s, rings_u, rings_v = list(pos), list(ru), list(rv)
-    # rounded caps: quarter-ellipse of depth cap * radius beyond each end
-    for end, sign, cap in ((0, -1.0, cap0), (-1, 1.0, cap1)):
-        if cap <= 0:
-            continue
-        r_end = 0.5 * (ru[end] + rv[end])
-        extra = []
-        for a in np.linspace(0.0, np.pi / 2, 5)[1:-1]:
-            extra.append((pos[end] + sign * cap * r_end * np.sin(a), ru[end] * np.cos(a), rv[end] * np.cos(a)))
-        if sign < 0:
-            for s, a_, b_ in extra:
-                rings_s.insert(0, s), rings_u.insert(0, a_), rings_v.insert(0, b_)
-        else:
-            for s, a_, b_ in extra:
-                rings_s.append(s), rings_u.append(a_), rings_v.append(b_)
-    s_arr = np.array(rings_s)
-    tt = s_arr / length
-    du = dv = np.zeros_like(tt)
-    if offsets:
-        off = np.array(offsets, dtype=float)
-        du, dv = np.interp(tt, off[:, 0], off[:, 1]), np.interp(tt, off[:, 0], off[:, 2])
-    rings = np.stack([superellipse_ring(p0 + s * d + a * u + b * v, u, v, ru_, rv_, n, exponent)
-                      for s, ru_, rv_, a, b in zip(s_arr, rings_u, rings_v, du, dv)])
-    start = p0 + (s_arr[0] - cap0 * 0.13 * 0.5 * (ru[0] + rv[0])) * d + du[0] * u + dv[0] * v if cap0 > 0 else None
-    end = p0 + (s_arr[-1] + cap1 * 0.13 * 0.5 * (ru[-1] + rv[-1])) * d + du[-1] * u + dv[-1] * v if cap1 > 0 else None
-    return tube(rings, start, end)
-
-
-def _torso_profile(spec: BodySpec, sk: Skeleton) -> dict[str, np.ndarray]:
-    """Key heights (y) and (half width, half depth, centre z) of the torso surface."""
-    d = spec.dims
-    s = spec.stature / 1.756
-    yh = sk.points["hip_y"][1]
-    yt = sk.points["spine_top"][1]
-    rows = [  # y, full width, full depth, centre z
-        (yh - 0.085 * s, 0.62 * d["hip.breadth"], 0.62 * d["buttock.depth"], -0.01 * s),
-        (yh - 0.04 * s, 0.93 * d["hip.breadth"], 0.9 * d["buttock.depth"], -0.015 * s),
-        (yh + 0.01 * s, d["hip.breadth"], d["buttock.depth"], -0.02 * s),
-        (yh + 0.08 * s, 0.5 * (d["hip.breadth"] + d["waist.breadth"]), 0.5 * (d["buttock.depth"] + d["waist.depth"]), -0.01 * s),
-        (yh + 0.16 * s, d["waist.breadth"], d["waist.depth"], 0.0),
-        (yt - 0.30 * s, 0.5 * (d["waist.breadth"] + d["chest.breadth"]), 0.5 * (d["waist.depth"] + d["chest.depth"]), 0.0),
-        (yt - 0.22 * s, d["chest.breadth"], d["chest.depth"], 0.01 * s),
-        (yt - 0.13 * s, 1.04 * d["chest.breadth"], 0.95 * d["chest.depth"], 0.0),
-        (yt - 0.06 * s, 0.95 * d["chest.breadth"], 0.8 * d["chest.depth"], -0.01 * s),
-        (yt - 0.01 * s, 0.7 * d["chest.breadth"], 0.62 * d["chest.depth"], -0.02 * s),
-        (yt + 0.02 * s, 1.15 * d["neck.breadth"], 1.05 * d["neck.breadth"], -0.02 * s),
-    ]
-    a = np.array(rows)
-    return {"y": a[:, 0], "rx": a[:, 1] / 2, "rz": a[:, 2] / 2, "cz": a[:, 3]}
-
-
-def _torso_slab(prof: dict[str, np.ndarray], y0: float, y1: float, cap0: bool, cap1: bool) -> Mesh:
-    ys = np.linspace(y0, y1, max(2, int(np.ceil((y1 - y0) / 0.02)) + 1))
-    rx, rz, cz = (np.interp(ys, prof["y"], prof[k]) for k in ("rx", "rz", "cz"))
-    ex, ez = np.array([1.0, 0.0, 0.0]), np.array([0.0, 0.0, 1.0])
-    rings = [superellipse_ring(np.array([0.0, y, c]), ex, ez, a, b, AROUND_TORSO, 2.3)
-             for y, a, b, c in zip(ys, rx, rz, cz)]
-    start = np.array([0.0, ys[0] - 0.6 * rz[0], cz[0]]) if cap0 else None
-    end = np.array([0.0, ys[-1] + 0.25 * rz[-1], cz[-1]]) if cap1 else None
-    if cap0:  # rounded crotch / seat
-        for f in (0.95, 0.8, 0.55):
-            rings.insert(0, superellipse_ring(np.array([0.0, ys[0] - 0.6 * rz[0] * np.sqrt(1 - f * f), cz[0]]),
-                                              ex, ez, rx[0] * f, rz[0] * f, AROUND_TORSO, 2.3))
-    return tube(np.stack(rings), start, end)
+    def slab(self, y0: float, y1: float, below: float, above: float, bottom: bool, top: bool) -> Mesh:
+        """The part of the surface from ``y0`` to ``y1``, reaching ``below``/``above`` metres into the
+        neighbouring slabs there with sections moving OVERLAP_INSET inward (inside the neighbour, so bending
+        opens no gap and coincident surfaces never z-fight); rounded crotch at the ``bottom``."""
+        ys = np.linspace(y0, y1, max(2, int(np.ceil((y1 - y0) / 0.015)) + 1))
+        rings = [self.ring(y) for y in ys]
+        # overlaps: the inset grows quadratically, so the visible edge ring keeps the surface's normal
+        if below > 0:
+            rings[:0] = [self.ring(y0 - below, OVERLAP_INSET), self.ring(y0 - 0.5 * below, 0.25 * OVERLAP_INSET)]
+        if above > 0:
+            rings += [self.ring(y1 + 0.5 * above, 0.25 * OVERLAP_INSET), self.ring(y1 + above, OVERLAP_INSET)]
+        # hidden overlap ends close with a plain fan (no inset ring needed for the side normals)
+        start = rings[0].mean(axis=0) if below > 0 else None
+        end = rings[-1].mean(axis=0) if above > 0 else None
+        if bottom:  # rounded crotch / seat
+            rz0, cz0 = float(self._rz(y0)), float(self._cz(y0))
+            for f in (0.95, 0.8, 0.55):
+                rings.insert(0, self.ring(y0, 0.0, -0.6 * rz0 * np.sqrt(1 - f * f), f))
+            start = np.array([0.0, y0 - 0.6 * rz0, cz0])
+        if top:
+            end = np.array([0.0, y1 + 0.25 * float(self._rz(y1)), float(self._cz(y1))])
+        return tube(np.stack(rings), start, end)
 
 
 def _head(spec: BodySpec, sk: Skeleton) -> Mesh:
+    """Cranium ellipsoid with a flatter, fuller face (front profile from forehead to chin), a narrower
+    jaw, and a generic face: brow ridge, eye sockets, nose (bridge, tip, wings), cheekbones, lips,
+    chin; ears. Longitudes are packed toward the face so the features have vertices to live on."""
     d = spec.dims
     s = spec.stature / 1.756
     vertex = sk.points["vertex"]
     view = sk.points["view"]
     ax, ay, az = d["head.breadth"] / 2, 0.118 * s, d["head.length"] / 2
     c = np.array([0.0, vertex[1] - ay, view[2] + 0.012 - az])
-    nlat, nlon = 24, 32
+    nlat, nlon = 46, 44
     lat = np.linspace(0, np.pi, nlat + 1)[1:-1]
-    lon = np.linspace(0, 2 * np.pi, nlon, endpoint=False)
+    u = np.linspace(-1.0, 1.0, nlon, endpoint=False) + 1.0 / nlon
+    lon = np.pi * np.sign(u) * np.abs(u) ** 1.45  # O=0 -> +z front, dense there
     L, O = np.meshgrid(lat, lon, indexing="ij")
-    dirs = np.stack([np.sin(L) * np.sin(O), np.cos(L), np.sin(L) * np.cos(O)], axis=-1)  # O=0 -> +z front
+    cl, sl = np.cos(L), np.sin(L)
+    e = np.where(cl > 0, 2.5, 2.3)  # a fuller, rounder cranium and a squarer jaw than an ellipsoid
+    cl, sl = np.sign(cl) * np.abs(cl) ** (2 / e), sl ** (2 / e)
+    dirs = np.stack([sl * np.sin(O), cl, sl * np.cos(O)], axis=-1)
     p = dirs * [ax, ay, az]
-    y_rel = p[..., 1] / ay
+    y_rel = dirs[..., 1]
     jaw = np.clip(-y_rel, 0, 1)  # 0 above the centre, 1 at the chin
-    p[..., 0] *= 1.0 - 0.28 * jaw ** 1.5
-    p[..., 2] *= 1.0 - 0.12 * jaw * (p[..., 2] < 0)
+    front = np.clip(np.cos(O), 0, 1) ** 3  # 1 on the midline front
+    # face: the lower face stands further forward than an ellipsoid (flat face, forward chin)
+    face_fill = np.interp(y_rel, [-1.0, -0.93, -0.8, -0.55, -0.2, 0.2, 0.5], [0.0, 0.26, 0.24, 0.13, 0.03, 0.0, 0.0])
+    p[..., 2] += az * face_fill * front * (p[..., 2] > 0)
+    p[..., 0] *= 1.0 - 0.3 * jaw ** 1.8
+    p[..., 2] *= 1.0 - 0.14 * jaw * (p[..., 2] < 0)  # nape
+    p[..., 1] -= 0.05 * ay * jaw ** 2 * (p[..., 2] > 0)  # chin reaches down
     world = c + p
+    x, y = world[..., 0], world[..., 1]
 
-    def bump(centre: np.ndarray, sigma: np.ndarray, amount: float) -> np.ndarray:
-        q = (world - centre) / sigma
-        return amount * np.exp(-0.5 * (q ** 2).sum(axis=-1))
+    def bump(x0: float, y0: float, ex: float, ey: float, amount: float) -> np.ndarray:
+        return amount * s * np.exp(-0.5 * (((x - x0 * s) / (ex * s)) ** 2 + ((y - y0) / (ey * s)) ** 2))
 
-    front = np.array([0.0, 0.0, 1.0])
     eye_y = view[1]
-    nose = bump(np.array([0.0, eye_y - 0.03 * s, c[2] + az]), np.array([0.011, 0.022, 0.03]) * s, 0.022 * s)
-    brow = bump(np.array([0.0, eye_y + 0.017 * s, c[2] + az]), np.array([0.05, 0.01, 0.03]) * s, 0.006 * s)
-    chin = bump(np.array([0.0, c[1] - 0.9 * ay, c[2] + 0.8 * az]), np.array([0.02, 0.015, 0.03]) * s, 0.008 * s)
-    sockets = sum(bump(np.array([sx * d["eyes.breadth"] / 2, eye_y, c[2] + az]), np.array([0.014, 0.011, 0.03]) * s,
-                       -0.009 * s) for _, sx in SIDES)
-    ears = sum(bump(np.array([sx * ax, eye_y - 0.02 * s, c[2] - 0.01 * s]), np.array([0.012, 0.025, 0.012]) * s,
-                    0.012 * s) for _, sx in SIDES)
-    world = world + (nose + brow + chin + sockets)[..., None] * front
-    world = world + ears[..., None] * np.stack([np.sign(world[..., 0]), 0 * world[..., 0], 0 * world[..., 0]], -1)
+    eb = d["eyes.breadth"] / 2
+    # nose: protrusion rising from the bridge to the tip, then tucked under to its base
+    tip_y, base_y, bridge_y = eye_y - 0.042 * s, eye_y - 0.054 * s, eye_y + 0.004 * s
+    prof = np.interp(y, [base_y - 0.004 * s, base_y, tip_y, bridge_y, bridge_y + 0.012 * s],
+                     [0.0, 0.008 * s, 0.021 * s, 0.005 * s, 0.0])
+    wide = np.interp(y, [base_y, tip_y, bridge_y], [0.013, 0.011, 0.0075]) * s
+    nose = prof * np.exp(-0.5 * (x / wide) ** 2)
+    nose += sum(bump(sx * 0.014, base_y + 0.006 * s, 0.006, 0.006, 0.005) for _, sx in SIDES)  # wings
+    brow = np.exp(-0.5 * (x / (0.045 * s)) ** 4) * 0.006 * s * np.exp(-0.5 * ((y - eye_y - 0.02 * s) / (0.008 * s)) ** 2)
+    # eye sockets deep enough that the eyeballs (radius 0.0125 s, centre 12 mm behind the view point)
+    # show their front half
+    k = np.argmin((x - eb) ** 2 + (y - eye_y) ** 2 + 1e3 * (world[..., 2] < c[2]))
+    depth = world.reshape(-1, 3)[k, 2]
+    socket = max(0.0, depth - (view[2] - 0.012 + 0.5 * 0.0125 * s)) / s
+    sockets = sum(bump(sx * eb / s, eye_y, 0.015, 0.011, -socket) for _, sx in SIDES)
+    cheeks = sum(bump(sx * 0.04, eye_y - 0.03 * s, 0.014, 0.014, 0.004) for _, sx in SIDES)
+    lips = (bump(0.0, eye_y - 0.07 * s, 0.02, 0.0055, 0.0045) + bump(0.0, eye_y - 0.085 * s, 0.017, 0.006, 0.004)
+            + bump(0.0, eye_y - 0.0775 * s, 0.022, 0.0018, -0.0015))
+    chin = bump(0.0, eye_y - 0.113 * s, 0.02, 0.012, 0.006)
+    face = (nose + brow + sockets + cheeks + lips + chin) * np.clip(dirs[..., 2] * 3, 0, 1)
+    world[..., 2] += face
+    ears = sum(np.exp(-0.5 * (((y - eye_y + 0.015 * s) / (0.028 * s)) ** 2 + ((world[..., 2] - c[2] + 0.008 * s)
+                                                                             / (0.015 * s)) ** 2))
+               * (np.sign(x) == sx) for _, sx in SIDES) * 0.011 * s
+    world[..., 0] += ears * np.sign(x)
     return tube(world, c + [0.0, ay, 0.0], c - [0.0, ay * 1.0, 0.0])
 
 
@@ -227,13 +206,16 @@ def body_shapes(spec: BodySpec, sk: Skeleton) -> dict[str, tuple[Mesh, str]]:
     def put(seg: str, mesh: Mesh, region: str) -> None:
         out[seg] = (Mesh(mesh.vertices - org[seg], mesh.faces), ATTRIBUTES[region])
 
-    # torso slabs, one per vertebra, meeting at the joint heights (overlapping coincident surfaces
-    # would z-fight); the joint centres lie near the back, so bending opens only shallow creases
-    prof = _torso_profile(spec, sk)
+    # torso slabs, one per vertebra, meeting at the joint heights and overlapping their neighbours
+    torso = _Torso(spec, sk)
     spine = ["pelvis", "l5", "l4", "l3", "l2", "l1"] + [f"t{k}" for k in range(12, 0, -1)]
-    bounds = [prof["y"][0]] + [org[n][1] for n in spine[1:]] + [prof["y"][-1]]
+    bounds = [torso.y0] + [org[n][1] for n in spine[1:]] + [torso.y1]
+    heights = np.diff(bounds)
+    last = len(spine) - 1
     for k, name in enumerate(spine):
-        put(name, _torso_slab(prof, bounds[k], bounds[k + 1], k == 0, k == len(spine) - 1),
+        below = OVERLAP * min(heights[k], heights[k - 1]) if k > 0 else 0.0
+        above = OVERLAP * min(heights[k], heights[k + 1]) if k < last else 0.0
+        put(name, torso.slab(bounds[k], bounds[k + 1], below, above, k == 0, k == last),
             "trousers" if k <= 2 else "shirt")
     nb = d["neck.breadth"] / 2
     put("neck", limb(pts["spine_top"] + [0, -0.03 * s, 0.015 * s], pts["head_joint"] + [0, 0.02 * s, 0.01 * s],
@@ -273,25 +255,71 @@ def _arm_shapes(spec: BodySpec, sk: Skeleton, side: str, sx: float, put) -> None
         st = [(0.0, *_interp_st(stations, a))] + [((t - a) / (b_ - a), ru, rv) for t, ru, rv in stations if a < t < b_] \
             + [(1.0, *_interp_st(stations, b_))]
         put(name, limb(elbow - [0, a * fl, 0], elbow - [0, b_ * fl, 0], st, cap0=1.0 if k == 0 else 0.0,
-                       cap1=0.0, hint=np.array([1.0, 0.0, 0.0])), "shirt" if k < 2 else "skin")
+                       cap1=0.4 if k == 2 else 0.0, hint=np.array([1.0, 0.0, 0.0])), "shirt" if k < 2 else "skin")
         t0 = t1
-    # palm: a rounded slab from the wrist to the knuckles, thin across x (palm faces medially)
-    hl, hb = d["hand.length"], d["hand.breadth"]
-    knuckle_y = np.mean([pts[f"{side}_{f}_mcp"][1] for f in FINGERS])
-    put(f"{side}_palm", limb(wrist + [0, 0.01 * s, 0], np.array([wrist[0], knuckle_y, wrist[2]]),
-                             [(0, 0.62 * wb, 0.95 * wb), (0.3, 0.15 * hb, 0.47 * hb), (1, 0.13 * hb, 0.5 * hb)],
-                             hint=np.array([1.0, 0.0, 0.0]), cap0=0.4, cap1=0.35, exponent=2.6,
-                             offsets=[(0, 0, 0), (1, 0, 0.01 * hb)]), "skin")
+    _hand_shapes(spec, sk, side, sx, put)
+
+
+def _hand_shapes(spec: BodySpec, sk: Skeleton, side: str, sx: float, put) -> None:
+    """Palm: a rounded box of the hand breadth and thickness from the wrist to the slanted knuckle line;
+    fingers: tapered, slightly flattened phalanges touching their neighbours, rounded tips; thumb: a
+    thick metacarpal (the thenar pad) and two phalanges, opposed (forward and toward the palm)."""
+    d = spec.dims
+    pts, org = sk.points, sk.origins
+    hl, hb, wb = d["hand.length"], d["hand.breadth"], d["wrist.breadth"]
+    wrist = pts[f"{side}_wrist"]
+    # knuckle line: MCP heights against the across-the-palm position z (thumb side +z)
+    mz = np.array([pts[f"{side}_{f}_mcp"][2] for f in reversed(FINGERS)])
+    my = np.array([pts[f"{side}_{f}_mcp"][1] for f in reversed(FINGERS)])
+    y_top = wrist[1] + 0.06 * hl  # inside the forearm's end
+    # stations along the palm (fraction of the way to the knuckle line): half thickness (x), half
+    # width (z), centre z; then a rounded knuckle end in the thickness only
+    st = np.array([(0.0, 0.3 * wb, 0.42 * wb, 0.0), (0.15, 0.33 * wb, 0.47 * wb, 0.0),
+                   (0.45, 0.16 * hb, 0.45 * hb, 0.02 * hb), (0.8, 0.15 * hb, 0.45 * hb, 0.02 * hb),
+                   (1.0, 0.14 * hb, 0.44 * hb, 0.02 * hb)])
+    ts = np.linspace(0.0, 1.0, 9)
+    cu, sv = superellipse_unit(AROUND_LIMB + 4, 2.8)
+    rings = []
+    for t in ts:
+        tx, tz, cz = (np.interp(t, st[:, 0], st[:, k]) for k in (1, 2, 3))
+        z = wrist[2] + cz + tz * sv
+        y_end = np.interp(z, mz, my)
+        rings.append(np.column_stack([wrist[0] + tx * cu, y_top + t * (y_end - y_top), z]))
+    t_end, z_end = st[-1, 1], st[-1, 2]
+    for a in np.linspace(0.0, np.pi / 2, 5)[1:-1]:  # rounded knuckles, reaching 0.6 of the thickness
+        z = wrist[2] + st[-1, 3] + z_end * (1.0 - 0.12 * (1 - np.cos(a))) * sv
+        rings.append(np.column_stack([wrist[0] + t_end * np.cos(a) * cu,
+                                      np.interp(z, mz, my) - 0.6 * t_end * np.sin(a), z]))
+    tip = np.array([wrist[0], np.interp(0.0, mz, my) - 0.6 * t_end, wrist[2] + st[-1, 3]])
+    put(f"{side}_palm", tube(np.stack(rings), None, tip), "skin")
+
+    width = {"thumb": 0.125, "index": 0.116, "middle": 0.118, "ring": 0.11, "little": 0.097}
     for digit in DIGITS:
-        radius = (0.125 if digit == "thumb" else 0.105 if digit != "little" else 0.09) * hb
-        lengths = BUCHHOLZ[digit][1:] if digit != "thumb" else BUCHHOLZ[digit]
+        w0 = width[digit] * hb
+        lengths = np.array(BUCHHOLZ[digit][1:] if digit != "thumb" else BUCHHOLZ[digit]) * hl
+        total = lengths.sum()
+        taper = 0.22 if digit != "thumb" else 0.18
+        done = 0.0
         for k, length in enumerate(lengths, start=1):
             seg = f"{side}_{digit}_{k}"
             p0 = org[seg]
-            p1 = p0 + pts[f"{seg}_dir"] * length * hl
-            r0 = radius * (1.0 - 0.1 * (k - 1))
-            r1 = radius * (1.0 - 0.1 * k) if k < len(lengths) else radius * 0.75
-            put(seg, limb(p0, p1, [(0, r0, r0), (1, r1, r1)], AROUND_DIGIT, cap0=0.8, cap1=1.0), "skin")
+            direction = pts[f"{seg}_dir"]
+            wa, wb_ = (w0 * (1.0 - taper * x / total) for x in (done, done + length))
+            done += length
+            last = k == len(lengths)
+            if digit == "thumb" and k == 1:  # thenar pad: thick, bulging toward the palm
+                mesh = limb(p0 - direction * 0.25 * length, p0 + direction * length,
+                            [(0, 1.25 * w0, 1.35 * w0), (0.45, 1.3 * w0, 1.35 * w0), (1, 1.0 * w0, 1.02 * w0)],
+                            AROUND_DIGIT + 2, hint=(1.0, 0.0, 0.0), cap0=0.6, cap1=0.8, step=0.012,
+                            offsets=[(0, -sx * 0.25 * w0, 0.0), (0.6, -sx * 0.15 * w0, 0.0), (1, 0, 0)])
+            else:
+                end = length - (0.75 * wb_ if last else 0.0)  # the rounded tip ends at the tip site
+                mesh = limb(p0, p0 + direction * end,
+                            [(0, 0.86 * wa, 1.02 * wa), (0.5, 0.8 * 0.5 * (wa + wb_), 0.94 * 0.5 * (wa + wb_)),
+                             (1, 0.82 * wb_ if not last else 0.72 * wb_, 0.98 * wb_ if not last else 0.92 * wb_)],
+                            AROUND_DIGIT, hint=(1.0, 0.0, 0.0), cap0=0.5, cap1=0.9, step=0.03,
+                            cap_rings=(1, 2 if not last else 3), exponent=2.2)
+            put(seg, mesh, "skin")
 
 
 def _interp_st(stations: list[tuple[float, float, float]], t: float) -> tuple[float, float]:
