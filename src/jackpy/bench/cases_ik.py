@@ -1,8 +1,10 @@
-"""IK benchmarks: the 7-DOF arm and the 136-DOF tree, cold and dragged, against scipy L-BFGS-B.
+"""IK benchmarks: the 7-DOF arm, the synthetic 136-DOF tree and the standard human (137 DOFs, joint
+groups: 78 variables), cold and dragged, against scipy L-BFGS-B.
 
 Success means every goal within 1 mm and 0.5 deg. The baseline minimises the same potential with
 the same analytic gradient (one forward pass per call) from the same start, with the same box
-limits, and stops at the same success test (a callback), so both sides solve the same problem.
+limits, and stops at the same success test (a callback), so both sides solve the same problem
+(except that L-BFGS-B only knows the box: the standard human's shoulder cuts ``A z <= b`` are ours alone).
 """
 
 from __future__ import annotations
@@ -15,6 +17,7 @@ from scipy.optimize import minimize
 from jackpy import ik
 from jackpy.bench.runner import Case, Result
 from jackpy.ik.arm7 import Q_OF_THETA, Arm7, arm7_figure
+from jackpy.peabody.groups import VariableMap
 from jackpy.peabody.model import Figure
 from jackpy.peabody.synthetic import human_like_tree
 
@@ -138,9 +141,13 @@ def body_drag(quick: bool) -> Result:
     rng = np.random.default_rng(3)
     set_targets(fig, goals, rng.uniform(fig.lower, fig.upper) * 0.3)
     ik.solve(problem)
+    return _drag("ik-body-drag", problem, goals, 50 if quick else 200)
+
+
+def _drag(name: str, problem: ik.Problem, goals: list[ik.Goal], frames: int) -> Result:
+    """Drag the first goal's frame 5 mm per frame out and back along a line, solving each frame."""
     step = np.array([0.6, 0.48, 0.64]) * 0.005 / np.linalg.norm([0.6, 0.48, 0.64])  # 5 mm per frame
     times, ok, iters = [], 0, []
-    frames = 50 if quick else 200
     for k in range(frames):
         target = goals[0].target.copy()
         target[:3, 3] += step if (k // 50) % 2 == 0 else -step  # out and back along a line
@@ -151,12 +158,81 @@ def body_drag(quick: bool) -> Result:
         ok += all(g.metres <= TOL_M and g.degrees <= TOL_DEG for g in r.goals)
         iters.append(r.iterations)
     t = np.array(times)
-    return Result("ik-body-drag", float(np.median(t)), float(np.percentile(t, 90)), None,
+    return Result(name, float(np.median(t)), float(np.percentile(t, 90)), None,
                   {"frames": frames, "success": ok / frames, "iters": float(np.median(iters))})
+
+
+# ----- the standard human ----------------------------------------------------------------------------
+HUMAN_SITES = ("left_palm.palm_centre", "right_palm.palm_centre")
+HUMAN_HEAD = "head.view"
+
+
+def human_problem() -> tuple[Figure, ik.Problem, list[ik.Goal]]:
+    """The standard 50th-percentile male (root ``pelvis.centre``): both palms position+orientation,
+    head aim (line of sight), centre of mass over a point; every chain from the root (78 variables)."""
+    from jackpy.body import make_human
+
+    fig = make_human("male", 50)
+    p = ik.Problem(fig)
+    goals = [p.add(ik.PositionOrientation(s, np.eye(4), cx=ik.unit_factor(1.0, 0.01))) for s in HUMAN_SITES]
+    goals.append(p.add(ik.Aim(HUMAN_HEAD, (0.0, 1.7, 1.0))))
+    goals.append(p.add(ik.CentreOfMass(np.zeros(3))))
+    return fig, p, goals
+
+
+def human_posture(fig: Figure, rng: np.random.Generator, fraction: float) -> np.ndarray:
+    """Variables ``fraction`` of the way from the current posture to a random feasible one (every
+    variable uniform in its box; group angles redrawn until their linear limits hold)."""
+    vm = VariableMap(fig)
+    x0 = vm.x()
+    u = rng.uniform(vm.lower, vm.upper)
+    for g, _, sl in vm.group_slices:
+        while not g.is_feasible(u[sl]):
+            u[sl] = rng.uniform(g.lower, g.upper)
+    return x0 + fraction * (u - x0)  # convex: inside the box and the rows when x0 and u are
+
+
+def set_human_targets(fig: Figure, goals: list[ik.Goal], x: np.ndarray) -> None:
+    """Goals reproducing variables ``x`` (palm frames, a point 1 m along the line of sight, the COM)."""
+    vm = VariableMap(fig)
+    saved = vm.x()
+    vm.apply(x)
+    for g, s in zip(goals, HUMAN_SITES):
+        g.target = fig.site_world(*s.split("."))
+    head = fig.site_world(*HUMAN_HEAD.split("."))
+    goals[2].target = head[:3, 3] + head[:3, 2]
+    goals[3].point = fig.centre_of_mass()
+    vm.apply(saved)
+
+
+def human_cold(quick: bool) -> Result:
+    fig, problem, goals = human_problem()
+    rng = np.random.default_rng(4)
+    vm = VariableMap(fig)
+    x0 = vm.x()
+    ours, base = [], []
+    n = 50 if quick else 300
+    for i in range(n):
+        set_human_targets(fig, goals, human_posture(fig, rng, 0.5))  # half the range of motion
+        vm.apply(x0)
+        ours.append(_ours(problem))
+        if i < (20 if quick else 100):
+            base.append(_scipy(problem))
+    return _row("ik-human-cold", ours, base)
+
+
+def human_drag(quick: bool) -> Result:
+    fig, problem, goals = human_problem()
+    rng = np.random.default_rng(5)
+    set_human_targets(fig, goals, human_posture(fig, rng, 0.3))
+    ik.solve(problem)
+    return _drag("ik-human-drag", problem, goals, 50 if quick else 200)
 
 
 CASES = [
     Case("ik-arm-cold", arm_cold, "7-DOF arm, random 6-D targets from neutral (analytic seed + BFGS)"),
     Case("ik-body-cold", body_cold, "136-DOF tree: 2 hand frames, head aim, COM; from neutral"),
     Case("ik-body-drag", body_drag, "same goals, one hand dragged 5 mm/frame, warm start"),
+    Case("ik-human-cold", human_cold, "standard human (78 variables, groups): palms, head aim, COM; from neutral"),
+    Case("ik-human-drag", human_drag, "same goals, one palm dragged 5 mm/frame, warm start"),
 ]

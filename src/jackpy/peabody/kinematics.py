@@ -31,6 +31,15 @@ if TYPE_CHECKING:
 MAX_JOINT_DOFS = 3
 
 
+def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Row-wise cross product of (n,3) arrays (``np.cross`` has a large fixed overhead)."""
+    out = np.empty(np.broadcast_shapes(a.shape, b.shape))
+    out[..., 0] = a[..., 1] * b[..., 2] - a[..., 2] * b[..., 1]
+    out[..., 1] = a[..., 2] * b[..., 0] - a[..., 0] * b[..., 2]
+    out[..., 2] = a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
+    return out
+
+
 @dataclass
 class FKResult:
     """World transforms from one forward pass.
@@ -139,6 +148,10 @@ class Kinematics:
             new_done[idx] = done[src]
             anc[idx] = anc[src]
             done = new_done
+        # Breadth-first order sorts segments by depth, and after k steps exactly those deeper than
+        # 2^k - 1 are unfinished: each step's ``idx`` is a suffix ``start:``.
+        self._jumps = [(int(idx[0]), src) for idx, src in self.jump_steps]
+        assert all(np.array_equal(idx, np.arange(idx[0], nseg)) for idx, _ in self.jump_steps)
         self.down_seg = np.flatnonzero(self.direction == 1)
         self.up_seg = np.flatnonzero(self.direction == -1)
 
@@ -156,6 +169,64 @@ class Kinematics:
         self.mass = np.array([s.mass for s in segs], dtype=float)
         self.com_local = np.array([s.com for s in segs], dtype=float).reshape(nseg, 3)
         self._eye_slots = np.broadcast_to(np.eye(4), (max(nj, 1) * MAX_JOINT_DOFS, 4, 4))
+        self._com_h = np.concatenate([self.com_local, np.ones((nseg, 1))], axis=1)[:, :, None]
+        self._moved_f = self.seg_moved_by_dof.T.astype(float)  # (ndof, nseg)
+        self._m_moved = self._moved_f @ self.mass  # mass moved by each DOF
+        self._build_traversal(nseg, nj, joints)
+
+    def _build_traversal(self, nseg: int, nj: int, joints: list) -> None:
+        """Per-segment form of the forward pass (see :meth:`forward`).
+
+        Every non-root segment ``s`` gets ``local(s) = P(s) @ S0 @ S1 @ S2 @ Q(s)`` with ``P, Q`` the
+        constant site transforms of its parent joint (down: ``L(from)``, ``L(to)^-1``; up: ``L(to)``,
+        ``L(from)^-1``) and ``S0..S2`` the joint's DOF transforms in *traversal* order: proximal-first
+        going down; for a joint traversed up, ``D^-1`` = the inverse DOF transforms in type order,
+        i.e. each DOF with its axis negated. So every DOF is one rotation (or translation) about a
+        signed constant axis in a fixed slot ``(t, s)``; unused slots hold the identity.
+        """
+        P = np.broadcast_to(np.eye(4), (nseg, 4, 4)).copy()
+        Q = P.copy()
+        for s in range(1, nseg):
+            j = self.parent_joint[s]
+            if self.direction[s] == 1:
+                P[s], Q[s] = self.L_from[j], self.L_to_inv[j]
+            else:
+                P[s], Q[s] = self.L_to[j], self.L_from_inv[j]
+        self._P, self._Q = P, Q
+        child = np.zeros(max(nj, 1), dtype=int)
+        for s in range(1, nseg):
+            child[self.parent_joint[s]] = s
+        ndof = self.ndof
+        t_slot = np.zeros(ndof, dtype=int)  # traversal slot of each DOF
+        start = 0
+        for ji, j in enumerate(joints):
+            for k in range(j.ndof):
+                t_slot[start + k] = (j.ndof - 1 - k) if self.joint_direction[ji] == 1 else k
+            start += j.ndof
+        seg_of_dof = child[self.dof_joint] if ndof else np.zeros(0, dtype=int)
+        self._dof_seg = seg_of_dof
+        self._dof_pos = t_slot * nseg + seg_of_dof  # flat index into the (3, nseg) slot grid
+        # The DOF's frame (a point on its axis, its axis) is the prefix product before its own
+        # transform going down, after it going up (the joint's from-site side): L_k = P S0 .. S_{k-1}.
+        up = self.dof_sign < 0
+        self._dof_frame = (t_slot + up) * nseg + seg_of_dof  # flat index into (4, nseg) prefixes
+        self._dof_parent = self.parent[seg_of_dof] if ndof else np.zeros(0, dtype=int)
+        signed = self.dof_axis * self.dof_sign[:, None]
+        ra = signed[self.rot_dofs]
+        x, y, z = ra[:, 0], ra[:, 1], ra[:, 2]
+        zero = np.zeros_like(x)
+        self._rot_K = np.stack([zero, -z, y, z, zero, -x, -y, x, zero], axis=1).reshape(-1, 3, 3)
+        self._rot_outer = ra[:, :, None] * ra[:, None, :]
+        self._rot_rest = np.eye(3) - self._rot_outer
+        self._rot_pos = self._dof_pos[self.rot_dofs]
+        self._trans_axis = signed[self.trans_dofs]
+        self._trans_pos = self._dof_pos[self.trans_dofs]
+        # (axis, 0; 0, 1) per DOF: one product with a frame gives its axis and origin
+        ad = np.zeros((ndof, 4, 2))
+        ad[:, :3, 0] = self.dof_axis
+        ad[:, 3, 1] = 1.0
+        self._axis_origin = ad
+        self._slots_eye = np.broadcast_to(np.eye(4), (MAX_JOINT_DOFS * nseg, 4, 4)).copy()
 
     # ----- forward -----------------------------------------------------------------------------
     def dof_matrices(self, q: np.ndarray) -> np.ndarray:
@@ -170,33 +241,41 @@ class Kinematics:
         return m.reshape(-1, MAX_JOINT_DOFS, 4, 4)
 
     def forward(self, q: np.ndarray, location: np.ndarray) -> FKResult:
-        """World transforms of every segment for displacements ``q`` and root-site ``location``."""
+        """World transforms of every segment for displacements ``q`` and root-site ``location``.
+
+        Vectorised Rodrigues for all rotational DOFs at once (signed axes, constant parts
+        precomputed) into a slot grid ``S[t, s]``; the prefix products ``L_{k+1} = L_k @ S_k``
+        (``L_0 = P``) are three batched products, ``local = L_3 @ Q`` a fourth; pointer jumping turns
+        local into world transforms. Each DOF's world axis and point are one gather of its prefix
+        and its parent's world transform and two small products. Nothing is shared between calls
+        (thread-safe); the returned arrays are fresh.
+        """
         q = np.asarray(q, dtype=float)
         nseg = len(self.segment_names)
-        W = np.empty((nseg, 4, 4))
-        W[0] = location @ self.root_site_inv
         if self.njoints == 0:
+            W = np.empty((nseg, 4, 4))
+            W[0] = location @ self.root_site_inv
             return FKResult(W, np.zeros((0, 3)), np.zeros((0, 3)))
-        m = self.dof_matrices(q)
-        p1 = m[:, 0] @ m[:, 1]
-        D = p1 @ m[:, 2]
-        pj = self.parent_joint
-        if self.down_seg.size:
-            s = self.down_seg
-            j = pj[s]
-            W[s] = self.L_from[j] @ D[j] @ self.L_to_inv[j]
-        if self.up_seg.size:
-            s = self.up_seg
-            j = pj[s]
-            W[s] = self.L_to[j] @ rigid_inverse(D[j]) @ self.L_from_inv[j]
-        for idx, src in self.jump_steps:
-            W[idx] = W[src] @ W[idx]
-        # DOF frames: slot 0 acts in the from-site frame, slot 1 after slot 0, slot 2 after both.
-        from_site = W[self.joint_from_seg] @ self.L_from
-        frames = np.stack([from_site, from_site @ m[:, 0], from_site @ p1], axis=1).reshape(-1, 4, 4)
-        f = frames[self.dof_slot]
-        axes = np.einsum("nij,nj->ni", f[:, :3, :3], self.dof_axis)
-        return FKResult(W, axes, f[:, :3, 3])
+        S = self._slots_eye.copy()
+        if self._rot_pos.size:
+            a = q[self.rot_dofs]
+            c = np.cos(a)[:, None, None]
+            s = np.sin(a)[:, None, None]
+            S[self._rot_pos, :3, :3] = self._rot_outer + c * self._rot_rest + s * self._rot_K
+        if self._trans_pos.size:
+            S[self._trans_pos, :3, 3] = self._trans_axis * q[self.trans_dofs, None]
+        S = S.reshape(MAX_JOINT_DOFS, nseg, 4, 4)
+        L = np.empty((MAX_JOINT_DOFS + 1, nseg, 4, 4))
+        L[0] = self._P
+        np.matmul(L[0], S[0], out=L[1])
+        np.matmul(L[1], S[1], out=L[2])
+        np.matmul(L[2], S[2], out=L[3])
+        W = np.matmul(L[3], self._Q)
+        W[0] = location @ self.root_site_inv
+        for start, src in self._jumps:  # breadth-first order: the unfinished segments are a suffix
+            np.matmul(W[src], W[start:], out=W[start:])
+        ao = W[self._dof_parent] @ (L.reshape(-1, 4, 4)[self._dof_frame] @ self._axis_origin)
+        return FKResult(W, ao[:, :3, 0], ao[:, :3, 1])
 
     # ----- Jacobians -----------------------------------------------------------------------------
     def point_jacobian(self, fk: FKResult, seg: int, point: np.ndarray) -> np.ndarray:
@@ -206,7 +285,7 @@ class Kinematics:
 
     def _point_jac(self, fk: FKResult, moved: np.ndarray, point: np.ndarray) -> np.ndarray:
         sign = self.dof_sign * moved
-        lin = np.cross(fk.dof_axes, point - fk.dof_origins)
+        lin = _cross(fk.dof_axes, point - fk.dof_origins)
         if self.trans_dofs.size:
             lin[self.trans_dofs] = fk.dof_axes[self.trans_dofs]
         return (lin * sign[:, None]).T
@@ -237,18 +316,25 @@ class Kinematics:
 
     def segment_coms(self, fk: FKResult) -> np.ndarray:
         """World centre of mass of every segment (nseg,3)."""
-        return np.einsum("nij,nj->ni", fk.segments[:, :3, :3], self.com_local) + fk.segments[:, :3, 3]
+        return (fk.segments[:, :3, :] @ self._com_h)[:, :, 0]
 
     def com_jacobian(self, fk: FKResult) -> np.ndarray:
         """d(centre of mass)/dq (3, ndof), vectorised over all DOFs."""
         total = self.mass.sum()
         if total <= 0 or self.ndof == 0:
             return np.zeros((3, self.ndof))
-        c = self.segment_coms(fk)
-        moved = self.seg_moved_by_dof.T.astype(float)  # (ndof, nseg)
-        m_moved = moved @ self.mass  # (ndof,)
-        mc_moved = moved @ (self.mass[:, None] * c)  # (ndof,3)
-        lin = np.cross(fk.dof_axes, mc_moved - m_moved[:, None] * fk.dof_origins)
+        return self.com_and_jacobian(fk)[1]
+
+    def com_and_jacobian(self, fk: FKResult) -> tuple[np.ndarray, np.ndarray]:
+        """World centre of mass (3,) and d(centre of mass)/dq (3, ndof) from one pass over the segments."""
+        total = self.mass.sum()
+        if total <= 0 or self.ndof == 0:
+            return self.centre_of_mass(fk), np.zeros((3, self.ndof))
+        mc = self.mass[:, None] * self.segment_coms(fk)
+        com = mc.sum(axis=0) / total
+        m_moved = self._m_moved  # (ndof,)
+        mc_moved = self._moved_f @ mc  # (ndof,3): mass-weighted COMs moved by each DOF
+        lin = _cross(fk.dof_axes, mc_moved - m_moved[:, None] * fk.dof_origins)
         if self.trans_dofs.size:
             lin[self.trans_dofs] = fk.dof_axes[self.trans_dofs] * m_moved[self.trans_dofs, None]
-        return (lin * self.dof_sign[:, None]).T / total
+        return com, (lin * self.dof_sign[:, None]).T / total
