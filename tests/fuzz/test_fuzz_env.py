@@ -81,8 +81,8 @@ def test_psurf_name_of_anything(figdir: Path, name: str) -> None:
 
 
 def test_deeply_nested_and_long_input(figdir: Path) -> None:
-    for text in ["(" * 100000, "figure f { segment s { site a->location = " + "trans(1,2,3) * " * 20000 + "trans(0,0,0); } }",
-                 "place crate at " + "rotx(1)*" * 50000, "/*" * 10000, '"' + "a" * 100000]:
+    for text in ["(" * 100000, "figure f { segment s { site a->location = " + "trans(1,2,3) * " * 2000 + "trans(0,0,0); } }",
+                 "place crate at " + "rotx(1)*" * 3000, "/*" * 10000, '"' + "a" * 100000]:
         (figdir / "deep.env").write_text(text)
         expect_only_project_errors(lambda: read_environment(figdir / "deep.env"), str(figdir), position=True)
 

@@ -25,11 +25,12 @@ from typing import Any
 
 import numpy as np
 
+from jackpy import jsonfile
 from jackpy.atomic import atomic_write_text
-from jackpy.errors import ImportCADError, SessionError
+from jackpy.errors import JackpyError, SessionError
 from jackpy.peabody.model import Environment, Figure
 from jackpy.peabody.transforms import euler_xyz, rotation, translation
-from jackpy.scene.cad import CADObject, import_cad
+from jackpy.scene.cad import UNITS, UP_AXES, CADObject, import_cad
 
 FORMAT_VERSION = 1
 
@@ -107,32 +108,43 @@ def stand_figure(figure: Figure, stand: Stand) -> None:
 
 
 def load_workplace(path: str | os.PathLike) -> Workplace:
-    """Read a scene file and import its objects. Errors name the file and the part at fault."""
+    """Read a scene file and import its objects. Errors (:class:`SessionError`) name the file and
+    the part at fault: ``file:line:column`` for JSON syntax, the key path for a value of the wrong
+    shape (``objects[2].units: expected one of m, cm, mm, in, found 'km'``)."""
     p = Path(path)
     try:
-        data = json.loads(p.read_text(encoding="utf-8"))
+        data = jsonfile.load(p, SessionError)
     except FileNotFoundError:
         raise SessionError(f"{p}: no such scene file") from None
-    except (OSError, UnicodeDecodeError, json.JSONDecodeError) as exc:
-        raise SessionError(f"{p}: not a readable JSON scene: {exc}") from None
+    except OSError as exc:
+        raise SessionError(f"{p}: cannot read the scene: {exc.strerror or exc}") from None
+    except ValueError:  # a name with a NUL byte
+        raise SessionError(f"{p!s}: not a valid file name") from None
     if not isinstance(data, dict) or data.get("jackpy_scene") != FORMAT_VERSION:
         raise SessionError(f"{p}: not a jackpy scene file (missing \"jackpy_scene\": {FORMAT_VERSION})")
     wp = Workplace(path=p)
     try:
-        for k, od in enumerate(data.get("objects", [])):
-            wp.env.add(_object_from_json(od, p.parent, f"{p}: objects[{k}]"))
-        fd = data.get("figure", {})
-        pos = fd.get("position", [0.0, 0.0])
-        wp.stand = Stand((float(pos[0]), float(pos[1])), np.radians(float(fd.get("heading_deg", 0.0))))
-        ad = data.get("analysis", {})
-        wp.plan = AnalysisPlan([str(s) for s in ad.get("reach", [])], [str(s) for s in ad.get("view", [])],
-                               float(ad.get("load_kg", 0.0)), str(ad.get("hand", "right")))
-    except ImportCADError as exc:
-        raise SessionError(f"{p}: {exc}") from None
-    except (KeyError, TypeError, ValueError, IndexError, AttributeError) as exc:
-        raise SessionError(f"{p}: malformed scene: {type(exc).__name__}: {exc}") from None
-    if wp.plan.hand not in ("right", "left"):
-        raise SessionError(f"{p}: analysis hand must be 'right' or 'left', not {wp.plan.hand!r}")
+        objects = jsonfile.arr(data.get("objects", []), "objects")
+        specs = [_object_spec(od, f"objects[{k}]") for k, od in enumerate(objects)]
+        fd = jsonfile.obj(data.get("figure", {}), "figure")
+        pos = jsonfile.vector(fd.get("position", [0.0, 0.0]), "figure.position", 2)
+        heading = jsonfile.num(fd.get("heading_deg", 0.0), "figure.heading_deg")
+        ad = jsonfile.obj(data.get("analysis", {}), "analysis")
+        reach = [jsonfile.string(s, f"analysis.reach[{k}]")
+                 for k, s in enumerate(jsonfile.arr(ad.get("reach", []), "analysis.reach"))]
+        view = [jsonfile.string(s, f"analysis.view[{k}]")
+                for k, s in enumerate(jsonfile.arr(ad.get("view", []), "analysis.view"))]
+        load_kg = jsonfile.num(ad.get("load_kg", 0.0), "analysis.load_kg", 0.0)
+        hand = jsonfile.string(ad.get("hand", "right"), "analysis.hand", ("right", "left"))
+    except jsonfile.Invalid as exc:
+        raise jsonfile.schema_error(SessionError, str(p), exc) from None
+    for k, spec in enumerate(specs):
+        try:
+            wp.env.add(_object_from_spec(spec, p.parent))
+        except JackpyError as exc:  # unreadable CAD file, bad site name, a second object of that name
+            raise SessionError(f"{p}: objects[{k}]: {exc}") from None
+    wp.stand = Stand((float(pos[0]), float(pos[1])), float(np.radians(heading)))
+    wp.plan = AnalysisPlan(reach, view, load_kg, hand)
     return wp
 
 
@@ -162,25 +174,47 @@ def save_workplace(wp: Workplace, path: str | os.PathLike) -> None:
     wp.path = p
 
 
-def _object_from_json(od: dict[str, Any], base: Path, where: str) -> CADObject:
-    src = Path(od["source"])
-    obj = import_cad(src if src.is_absolute() else base / src, od.get("units", "m"), od.get("up", "y"),
-                     od.get("name"))
-    obj.location = _transform_from_json(od, where)
+def _object_spec(od: Any, where: str) -> dict[str, Any]:
+    """The checked content of one entry of ``objects`` (raises :class:`jsonfile.Invalid`)."""
+    od = jsonfile.obj(od, where)
+    spec: dict[str, Any] = {
+        "source": jsonfile.string(jsonfile.required(od, "source", where), f"{where}.source"),
+        "units": jsonfile.string(od.get("units", "m"), f"{where}.units", UNITS),
+        "up": jsonfile.string(od.get("up", "y"), f"{where}.up", UP_AXES),
+        "name": None if od.get("name") is None else jsonfile.string(od["name"], f"{where}.name"),
+        "location": _transform_from_json(od, where),
+        "colour": None, "sites": {},
+    }
+    if not spec["source"] or "\0" in spec["source"]:
+        raise jsonfile.Invalid(f"{where}.source", "expected a file name")
+    if spec["name"] == "":
+        raise jsonfile.Invalid(f"{where}.name", "expected a name, found ''")
     if "colour" in od:
-        obj.colour = tuple(float(c) for c in od["colour"])[:3]
-    for name, sd in od.get("sites", {}).items():
-        t = _transform_from_json(sd, f"{where}.sites.{name}")
+        spec["colour"] = tuple(float(c) for c in jsonfile.vector(od["colour"], f"{where}.colour", 3))
+    for name, sd in jsonfile.obj(od.get("sites", {}), f"{where}.sites").items():
+        swhere = f"{where}.sites.{name}"
+        spec["sites"][name] = _transform_from_json(jsonfile.obj(sd, swhere), swhere)
+    return spec
+
+
+def _object_from_spec(spec: dict[str, Any], base: Path) -> CADObject:
+    src = Path(spec["source"])
+    obj = import_cad(src if src.is_absolute() else base / src, spec["units"], spec["up"], spec["name"])
+    obj.location = spec["location"]
+    if spec["colour"] is not None:
+        obj.colour = spec["colour"]
+    for name, t in spec["sites"].items():
         obj.add_site(name, t[:3, 3], t[:3, :3])
     return obj
 
 
 def _transform_from_json(d: dict[str, Any], where: str) -> np.ndarray:
+    """``matrix`` (4x4) or ``position`` and ``rotation_deg`` of ``d`` (raises jsonfile.Invalid)."""
     if "matrix" in d:
-        t = np.asarray(d["matrix"], dtype=float)
-        if t.shape != (4, 4) or not np.isfinite(t).all():
-            raise ValueError(f"{where}: matrix must be 4x4 finite numbers")
+        t = jsonfile.matrix(d["matrix"], f"{where}.matrix", 4, 4)
+        if not np.allclose(t[3], [0, 0, 0, 1]) or abs(np.linalg.det(t[:3, :3])) < 1e-12:
+            raise jsonfile.Invalid(f"{where}.matrix", "expected a placement (last row 0 0 0 1, invertible)")
         return t
-    t = euler_xyz(tuple(np.radians(np.asarray(d.get("rotation_deg", [0, 0, 0]), dtype=float))))
-    t[:3, 3] = np.asarray(d.get("position", [0, 0, 0]), dtype=float).reshape(3)
+    t = euler_xyz(tuple(np.radians(jsonfile.vector(d.get("rotation_deg", [0, 0, 0]), f"{where}.rotation_deg", 3))))
+    t[:3, 3] = jsonfile.vector(d.get("position", [0, 0, 0]), f"{where}.position", 3)
     return t
