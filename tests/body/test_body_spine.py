@@ -9,6 +9,7 @@ from jackpy.body.spine import (
     SpineDriver,
     SpineWeights,
     distribute,
+    distribute_with_derivative,
     spine_group,
 )
 
@@ -109,3 +110,75 @@ def test_group_in_figure_and_jacobian(male50):
         e[k] = h
         assert np.allclose(jac[:, k], (g.driver(th + e) - g.driver(th - e)) / (2 * h), atol=1e-5)
     assert spine_group().nangles == 3
+
+
+FLAVOURS = [
+    SpineWeights(),
+    SpineWeights(initiator=17),
+    SpineWeights(initiator=8, resistor=12, resistance=0.7),
+    SpineWeights(bottom=3, top=14, initiator=14, resistor=5, resistance=1.0),
+    SpineWeights(bottom=2, top=9, initiator=5, spread=1.5),
+]
+
+
+def _near_kink(driver, theta, h):
+    """True when a central difference at ``theta`` straddles a piece boundary (a joint reaching its
+    goal, the target reaching the range, the turn at rest): compare one-sided differences."""
+    for k in range(3):
+        e = np.zeros(3)
+        e[k] = h
+        f0, fp, fm = driver(theta), driver(theta + e), driver(theta - e)
+        if not np.allclose((fp - f0) / h, (f0 - fm) / h, atol=1e-4):
+            return True
+    return False
+
+
+@pytest.mark.parametrize("zero_interpolation", [True, False])
+@pytest.mark.parametrize("flavour", range(len(FLAVOURS)))
+def test_analytic_jacobian_matches_finite_differences(flavour, zero_interpolation):
+    d = SpineDriver(FLAVOURS[flavour], zero_interpolation)
+    lo, hi = d.group_limits()
+    rng = np.random.default_rng(flavour)
+    checked = 0
+    for _ in range(60):
+        th = lo + (hi - lo) * rng.uniform(0.01, 0.99, 3)
+        if _near_kink(d, th, 1e-6):
+            continue
+        d._cache = None
+        jac = d.jacobian(th)
+        assert jac.shape == (54, 3)
+        assert np.allclose(jac, d.numerical_jacobian(th, 1e-7), atol=1e-6)
+        # each torso angle moves only its own DOF, and the vertebral sum moves one for one
+        cols = jac.reshape(18, 3, 3)
+        for c, a in enumerate(SPINE_ANGLES):
+            k = SPINE_DOFS.index(a)
+            assert cols[:, k, c].sum() == pytest.approx(1.0)
+            assert np.allclose(np.delete(cols[:, :, c], k, axis=1), 0.0)
+        checked += 1
+    assert checked >= 40
+
+
+def test_jacobian_at_rest_is_mean_of_both_sides_and_zero_beyond_range():
+    d = SpineDriver(SpineWeights(initiator=4, resistor=10, resistance=0.5))
+    assert np.allclose(d.jacobian(np.zeros(3)), d.numerical_jacobian(np.zeros(3), 1e-8), atol=1e-6)
+    lo, hi = d.group_limits()
+    assert np.allclose(d.jacobian(hi + 0.1), 0.0)
+    assert np.allclose(d.jacobian(lo - 0.1), 0.0)
+    # the cached evaluation follows a change of parameters
+    before = d.jacobian(np.radians([20.0, 0.0, 0.0]))
+    d.weights = SpineWeights(initiator=15)
+    assert not np.allclose(d.jacobian(np.radians([20.0, 0.0, 0.0])), before)
+
+
+def test_distribute_derivative_when_unbending():
+    n = 8
+    w = SpineWeights(top=7, initiator=2, resistor=5, resistance=0.6)
+    lo, hi, rest = -np.full(n, 0.1), np.full(n, 0.2), np.zeros(n)
+    bent = distribute(rest, rest, lo, hi, 1.1, w)
+    h = 1e-7
+    for target in (0.2, 0.7, 1.4, -0.3):  # unbend, unbend, bend further, bend past rest the other way
+        out, der = distribute_with_derivative(bent, rest, lo, hi, target, w)
+        assert np.allclose(out, distribute(bent, rest, lo, hi, target, w))
+        fd = (distribute(bent, rest, lo, hi, target + h, w) - distribute(bent, rest, lo, hi, target - h, w)) / (2 * h)
+        assert np.allclose(der, fd, atol=1e-6)
+        assert der.sum() == pytest.approx(1.0)

@@ -16,7 +16,8 @@ the initiator) and ``exp(-|i - resistor| / spread)`` between them, so resistance
 Joints outside ``[bottom, top]`` do not move. Joint indices run from 0 (``l5_s1``) to 17 (``c7_t1``).
 
 The group driver evaluates the model from the rest pose (rest angles are zero), so it is a pure
-function of the torso angles; its Jacobian is a central difference (the model is piecewise smooth).
+function of the torso angles. The model is piecewise smooth and its Jacobian is analytic: the
+derivative of the piece the angles lie in (see :func:`distribute_with_derivative`).
 """
 
 from __future__ import annotations
@@ -43,37 +44,82 @@ def distribute(current: np.ndarray, rest: np.ndarray, lower: np.ndarray, upper: 
 
     ``target`` is clamped to what the active joints can reach. Inactive joints keep ``current``.
     """
+    return distribute_with_derivative(current, rest, lower, upper, target, participation)[0]
+
+
+def distribute_with_derivative(current: np.ndarray, rest: np.ndarray, lower: np.ndarray, upper: np.ndarray,
+                               target: float, participation: SpineWeights) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`distribute` and its derivative with respect to ``target``, both (n,).
+
+    The map is piecewise smooth: the pieces are set by bending or unbending, by the side of the rest
+    sum the target lies on, by the clamping of the target and of the global participation ``P`` to
+    [0, 1], and by which joints the water-filling clamps at their goal. The derivative is that of the
+    piece the target lies in; exactly at the turn between bending up and bending down (``M = 0``) it
+    is the mean of the two one-sided derivatives (what a central difference gives). Outside the
+    reachable range the target is clamped and the derivative is zero.
+    """
     cur = np.asarray(current, dtype=float)
     active = participation.active(cur.size)
     lo, hi = np.where(active, lower, cur), np.where(active, upper, cur)
-    target = float(np.clip(target, lo.sum(), hi.sum()))
+    lo_sum, hi_sum = lo.sum(), hi.sum()
+    dtarget = 1.0 if lo_sum <= target <= hi_sum else 0.0
+    target = float(np.clip(target, lo_sum, hi_sum))
     m = target - cur.sum()
+    rest_a = np.where(active, rest, cur)
+    rest_gap = float(rest_a.sum() - cur.sum())
     if abs(m) < 1e-15:
-        return cur.copy()
-    rest_gap = float(np.where(active, rest, cur).sum() - cur.sum())
+        if not dtarget:
+            return cur.copy(), np.zeros_like(cur)
+        # at the kink: mean of the one-sided derivatives (each side may be bending or unbending)
+        sides = []
+        for sgn in (1.0, -1.0):
+            goal = rest_a if (abs(rest_gap) > 1e-15 and rest_gap * sgn > 0) else (hi if sgn > 0 else lo)
+            room = goal - cur
+            if abs(room.sum()) < 1e-15:
+                continue
+            free = active & (np.abs(room) > 1e-15)
+            w = np.where(free, participation.weights(cur.size, 0.0) * room, 0.0)
+            if abs(w.sum()) < 1e-300:
+                w = np.where(free, room, 0.0)
+            sides.append(w / w.sum())
+        d = np.mean(sides, axis=0) if sides else np.zeros_like(cur)
+        return cur.copy(), d
     unbending = rest_gap * m > 0 and abs(m) <= abs(rest_gap)
-    goal = np.where(active, rest, cur) if unbending else (hi if m > 0 else lo)
+    goal = rest_a if unbending else (hi if m > 0 else lo)
     room = goal - cur
-    p = min(max(m / room.sum(), 0.0), 1.0) if abs(room.sum()) > 1e-15 else 1.0
+    room_sum = room.sum()
+    if abs(room_sum) > 1e-15:
+        p_raw = m / room_sum
+        p = min(max(p_raw, 0.0), 1.0)
+        dp = dtarget / room_sum if 0.0 < p_raw < 1.0 else 0.0
+    else:
+        p, dp = 1.0, 0.0
     w = participation.weights(cur.size, p) * room
+    dw = participation.weights_dp(cur.size, p) * room * dp
     out = cur.copy()
+    d = np.zeros_like(cur)
+    dm = dtarget  # d(remaining M)/d(target): clamped joints take fixed amounts
     free = active & (np.abs(room) > 1e-15)
     for _ in range(cur.size + 1):  # water-filling: clamp overflowing joints, give their excess to the rest
         if abs(m) < 1e-15 or not free.any():
             break
         wf = np.where(free, w, 0.0)
+        dwf = np.where(free, dw, 0.0)
         if abs(wf.sum()) < 1e-300:
             wf = np.where(free, goal - out, 0.0)
-        step = m * wf / wf.sum()
+            dwf = np.zeros_like(cur)
+        s, ds = wf.sum(), dwf.sum()
+        step = m * wf / s
         new = out + step
         over = free & ((new - goal) * np.sign(m) > 0)
         if not over.any():
             out = new
+            d = d + dm * wf / s + m * (dwf * s - wf * ds) / (s * s)
             break
         m -= float((goal[over] - out[over]).sum())
         out[over] = goal[over]
         free &= ~over
-    return out
+    return out, d
 
 
 @dataclass
@@ -113,6 +159,19 @@ class SpineWeights:
         s = np.where(beyond, 1.0, np.exp(-np.abs(i - self.resistor) / self.spread))
         return part * (1.0 - self.resistance * (1.0 - p) * s)
 
+    def weights_dp(self, n: int, p: float) -> np.ndarray:
+        """d(``p_i * r_i``)/dP, the derivative of :meth:`weights`."""
+        i = np.arange(n)
+        e = np.exp(-np.abs(i - self.initiator) / self.spread)
+        part, dpart = p + (1.0 - p) * e, 1.0 - e
+        if self.resistor is None or self.resistance == 0.0:
+            return dpart
+        side = np.sign(self.resistor - self.initiator) or 1
+        beyond = (i - self.resistor) * side >= 0
+        s = np.where(beyond, 1.0, np.exp(-np.abs(i - self.resistor) / self.spread))
+        r = 1.0 - self.resistance * (1.0 - p) * s
+        return dpart * r + part * self.resistance * s
+
 
 #: preset flavours (book §4.2.3)
 BEND_FROM_WAIST = SpineWeights(initiator=0)
@@ -129,6 +188,7 @@ class SpineDriver:
         self.lower = np.array([[lv["limits"][d][0] for d in SPINE_DOFS] for lv in levels])
         self.upper = np.array([[lv["limits"][d][1] for d in SPINE_DOFS] for lv in levels])
         self.rest = np.zeros_like(self.lower)
+        self._cache: tuple | None = None  # (key, displacements, jacobian) of the last evaluation
 
     def group_limits(self) -> tuple[np.ndarray, np.ndarray]:
         """Box limits of the torso angles: the sums of the active joints' limits (radians)."""
@@ -137,21 +197,47 @@ class SpineDriver:
         hi = np.array([self.upper[act, _DOF_INDEX[a]].sum() for a in SPINE_ANGLES])
         return lo, hi
 
-    def __call__(self, theta: np.ndarray) -> np.ndarray:
+    def evaluate(self, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Member displacements (54,) and their analytic Jacobian (54, 3) at ``theta``.
+
+        Each torso angle drives only its own DOF of every vertebra, so column ``a`` is non-zero only
+        in the rows of that DOF; it is the derivative of the active piece of the model
+        (:func:`distribute_with_derivative`). The last evaluation is kept: the IK asks for the value
+        and the Jacobian at the same angles.
+        """
+        theta = np.asarray(theta, dtype=float)
+        w = self.weights
+        key = (theta.tobytes(), w.bottom, w.top, w.initiator, w.resistor, w.resistance, w.spread,
+               self.zero_interpolation)
+        if self._cache is not None and self._cache[0] == key:
+            return self._cache[1].copy(), self._cache[2].copy()
         out = self.rest.copy()
-        for a, t in zip(SPINE_ANGLES, np.asarray(theta, dtype=float)):
+        jac = np.zeros(out.shape + (len(SPINE_ANGLES),))
+        for c, (a, t) in enumerate(zip(SPINE_ANGLES, np.asarray(theta, dtype=float))):
             k = _DOF_INDEX[a]
             lo, hi, rest = self.lower[:, k], self.upper[:, k], self.rest[:, k]
             if self.zero_interpolation:
-                out[:, k] = distribute(rest, rest, lo, hi, t, self.weights)
+                out[:, k], jac[:, k, c] = distribute_with_derivative(rest, rest, lo, hi, t, self.weights)
             else:  # between the limits only: every active joint at the same fraction of its range
                 act = self.weights.active(len(lo))
                 span = np.where(act, hi - lo, 0.0)
-                u = np.clip((t - np.where(act, lo, rest).sum()) / span.sum(), 0.0, 1.0)
+                u_raw = (t - np.where(act, lo, rest).sum()) / span.sum()
+                u = min(max(u_raw, 0.0), 1.0)
                 out[:, k] = np.where(act, lo + u * span, rest)
-        return out.reshape(-1)
+                jac[:, k, c] = span / span.sum() if 0.0 <= u_raw <= 1.0 else 0.0
+        out, jac = out.reshape(-1), jac.reshape(-1, len(SPINE_ANGLES))
+        self._cache = (key, out, jac)
+        return out.copy(), jac.copy()
 
-    def jacobian(self, theta: np.ndarray, h: float = 1e-7) -> np.ndarray:
+    def __call__(self, theta: np.ndarray) -> np.ndarray:
+        return self.evaluate(theta)[0]
+
+    def jacobian(self, theta: np.ndarray) -> np.ndarray:
+        """Analytic d(member displacements)/d(torso angles), (54, 3)."""
+        return self.evaluate(theta)[1]
+
+    def numerical_jacobian(self, theta: np.ndarray, h: float = 1e-7) -> np.ndarray:
+        """Central-difference Jacobian (for tests)."""
         theta = np.asarray(theta, dtype=float)
         cols = []
         for k in range(theta.size):
