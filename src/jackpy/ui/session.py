@@ -27,6 +27,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 import jackpy
+from jackpy import jsonfile
 from jackpy.atomic import atomic_write_text
 from jackpy.errors import JackpyError, SessionError
 from jackpy.peabody import Environment, Figure
@@ -200,11 +201,15 @@ def load_session(path: str | os.PathLike[str]) -> tuple[Environment, dict[str, A
     data = None
     if side.is_file():
         try:
-            data = json.loads(side.read_text(encoding="utf-8"))
-        except (OSError, json.JSONDecodeError) as exc:
-            raise SessionError(f"{side}: not a readable session sidecar ({exc})") from None
+            data = jsonfile.load(side, SessionError)
+        except OSError as exc:
+            raise SessionError(f"{side}: not a readable session sidecar ({exc.strerror or exc})") from None
         if not isinstance(data, dict) or data.get("format") != FORMAT:
             raise SessionError(f"{side}: not a jackpy session sidecar")
+        try:
+            _check_sidecar(data)
+        except jsonfile.Invalid as exc:
+            raise jsonfile.schema_error(SessionError, str(side), exc) from None
     figs = (data or {}).get("figures", {})
     env = read_environment(path, require_geometry=not any("cad" in f for f in figs.values()))
     for name, entry in figs.items():
@@ -227,6 +232,52 @@ def load_session(path: str | os.PathLike[str]) -> tuple[Environment, dict[str, A
         if "human" in entry:
             _restore_human(fig, entry, f"{side}: figure {name!r}")
     return env, data
+
+
+def _check_sidecar(data: dict[str, Any]) -> None:
+    """The shape of a sidecar's content, before anything uses it (raises :class:`jsonfile.Invalid`
+    naming the key path; values are checked where they are applied)."""
+    from jackpy.scene.cad import UNITS, UP_AXES
+
+    for name, entry in jsonfile.obj(data.get("figures", {}), "figures").items():
+        where = f"figures.{name}"
+        entry = jsonfile.obj(entry, where)
+        for i, x in enumerate(jsonfile.arr(jsonfile.required(entry, "q", where), f"{where}.q")):
+            jsonfile.num(x, f"{where}.q[{i}]")
+        jsonfile.vector(jsonfile.required(entry, "location", where), f"{where}.location", 16)
+        if entry.get("root") is not None:
+            root = jsonfile.arr(entry["root"], f"{where}.root")
+            if len(root) != 2:
+                raise jsonfile.Invalid(f"{where}.root", "expected [SEGMENT, SITE]")
+            for i, r in enumerate(root):
+                jsonfile.string(r, f"{where}.root[{i}]")
+        if "cad" in entry:
+            cad = jsonfile.obj(entry["cad"], f"{where}.cad")
+            jsonfile.string(jsonfile.required(cad, "source", f"{where}.cad"), f"{where}.cad.source")
+            jsonfile.string(cad.get("units", "m"), f"{where}.cad.units", UNITS)
+            jsonfile.string(cad.get("up", "y"), f"{where}.cad.up", UP_AXES)
+        if "human" in entry:
+            h = jsonfile.obj(entry["human"], f"{where}.human")
+            jsonfile.string(jsonfile.required(h, "sex", f"{where}.human"), f"{where}.human.sex", ("male", "female"))
+            jsonfile.num(jsonfile.required(h, "percentile", f"{where}.human"), f"{where}.human.percentile", 1, 99)
+            jsonfile.string(h.get("population", "ansur2"), f"{where}.human.population")
+    jsonfile.obj(data.get("settings", {}), "settings")
+    jsonfile.obj(data.get("behaviors") or {}, "behaviors")
+    for k, g in enumerate(jsonfile.arr(data.get("goals", []), "goals")):
+        where = f"goals[{k}]"
+        g = jsonfile.obj(g, where)
+        for name in ("key", "figure", "site", "kind"):
+            jsonfile.string(jsonfile.required(g, name, where), f"{where}.{name}")
+        for name, n in (("target", 16), ("manip", 16), ("offset", 9)):
+            jsonfile.vector(jsonfile.required(g, name, where), f"{where}.{name}", n)
+        jsonfile.boolean(jsonfile.required(g, "enabled", where), f"{where}.enabled")
+        jsonfile.num(jsonfile.required(g, "weight", where), f"{where}.weight", 0.0)
+        jsonfile.integer(jsonfile.required(g, "priority", where), f"{where}.priority", -2**31, 2**31 - 1)
+    if "camera" in data:
+        c = jsonfile.obj(data["camera"], "camera")
+        jsonfile.vector(jsonfile.required(c, "target", "camera"), "camera.target", 3)
+        for name in ("distance", "yaw", "pitch"):
+            jsonfile.num(jsonfile.required(c, name, "camera"), f"camera.{name}")
 
 
 def apply_session(app: "App", env: Environment, data: dict[str, Any] | None, base: Path | None) -> None:
