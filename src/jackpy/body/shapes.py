@@ -17,6 +17,14 @@ from __future__ import annotations
 import numpy as np
 from scipy.interpolate import PchipInterpolator
 
+from jackpy.body.mesh_loft import (
+    limb,
+    merge,
+    signed_volume,
+    superellipse_ring,
+    superellipse_unit,
+    tube,
+)
 from jackpy.body.sass import BodySpec
 from jackpy.body.skeleton import (
     BUCHHOLZ,
@@ -26,8 +34,6 @@ from jackpy.body.skeleton import (
     SIDES,
     Skeleton,
 )
-from jackpy.body.mesh_loft import basis as _basis  # noqa: F401 - kept for callers of the old name
-from jackpy.body.mesh_loft import limb, merge, signed_volume, superellipse_ring, superellipse_unit, tube
 from jackpy.peabody.geometry import Mesh
 
 __all__ = ["ATTRIBUTES", "body_shapes", "limb", "merge", "signed_volume", "superellipse_ring", "tube"]
@@ -244,7 +250,6 @@ def _arm_shapes(spec: BodySpec, sk: Skeleton, side: str, sx: float, put) -> None
     put(f"{side}_upper_arm", limb(sh + [0, 0.015 * s, 0], elbow,
                                   [(0, 1.12 * ub, 1.12 * ub), (0.3, 1.05 * ub, ub), (0.6, 0.92 * ub, 0.95 * ub),
                                    (1, 0.86 * fb, 0.82 * fb)], hint=np.array([1.0, 0.0, 0.0])), "shirt")
-    wrist = pts[f"{side}_wrist"]
     fl = d["forearm.length"]
     stations = [(0, 0.84 * fb, 0.86 * fb), (0.2, 0.95 * fb, fb), (0.5, 0.78 * fb, 0.85 * fb), (1, 0.72 * wb, wb)]
     names = [f"{side}_forearm", f"{side}_forearm_mid", f"{side}_forearm_distal"]
