@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from jackpy.errors import FigureError
-from jackpy.ik.goals.base import Context, Goal, GoalEval
+from jackpy.ik.goals.base import Columns, Context, Goal, GoalEval
 from jackpy.ik.goals.combine import AnyOf
 from jackpy.peabody.groups import VariableMap
 
@@ -176,6 +176,7 @@ class Compiled:
                        if use[sl].any()]
         self.cols = np.concatenate([free_q] + [idx for _, idx, _, _ in self.groups]).astype(int)
         self.free_q = free_q
+        self.columns = Columns(kin, self.cols)
         A, b = vm.linear_constraints()
         self.A_x, self.b_x = A, b
         self.arm: ArmChain | None = None
@@ -220,7 +221,7 @@ class Compiled:
         x = self.x_of(x_base, z)
         q = self.q_of(q_base, x)
         fk = self.kin.forward(q, self.figure.location)
-        ctx = Context(self.kin, fk, self.cols)
+        ctx = Context(self.kin, fk, self.cols, self.columns)
         if self.groups:
             M = np.zeros((self.cols.size, self.nv))
             nf = self.n_free_vars

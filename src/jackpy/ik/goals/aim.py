@@ -44,10 +44,10 @@ class Aim(SiteGoal):
         v = w[:3, :3] @ self.axis
         d = self.target - r
         n = float(np.linalg.norm(d))
-        Jv = ctx.vector_jacobian(self.seg, v)
+        Jrv = ctx.stacked_jacobian(self.seg, np.stack([r, v]), (1.0, 1.0), point=True)
+        Jr, Jv = Jrv[:3], Jrv[3:]
         if n < 1e-9:
             return GoalEval(np.zeros(3), np.zeros_like(Jv))
         u = d / n
-        Jr = ctx.point_jacobian(self.seg, r)
         Ju = -(Jr - np.outer(u, u @ Jr)) / n
         return GoalEval(self.c * (u - v), self.c * (Ju - Jv), degrees=angle_deg(u, v))

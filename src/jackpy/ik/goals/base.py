@@ -27,56 +27,99 @@ Chain = str | Sequence[str] | None
 EPS = 1e-12
 
 
-def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """Row-wise cross product of (n,3) arrays without ``np.cross`` overhead."""
-    out = np.empty(np.broadcast_shapes(a.shape, b.shape))
-    out[..., 0] = a[..., 1] * b[..., 2] - a[..., 2] * b[..., 1]
-    out[..., 1] = a[..., 2] * b[..., 0] - a[..., 0] * b[..., 2]
-    out[..., 2] = a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
-    return out
+#: ``LC9 @ v`` is the cross-product matrix ``[v]x`` of a 3-vector, flattened row-major
+_LC9 = np.array([[0, 0, 0], [0, 0, -1], [0, 1, 0],
+                 [0, 0, 1], [0, 0, 0], [-1, 0, 0],
+                 [0, -1, 0], [1, 0, 0], [0, 0, 0]], dtype=float)
 
 
-def _skew(v: np.ndarray) -> np.ndarray:
-    return np.array([[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]])
+def skews(vectors: np.ndarray) -> np.ndarray:
+    """Stacked cross-product matrices ``[v_k]x`` of the rows of ``vectors`` (k,3), as (3k, 3)."""
+    v = np.asarray(vectors, dtype=float).reshape(-1, 3)
+    return (v @ _LC9.T).reshape(-1, 3)
+
+
+class Columns:
+    """Constants of a set of solver columns (DOF indices into ``q``) on one :class:`Kinematics`:
+    the DOF signs, which columns translate, and ``moved[s, c]`` (float) = column ``c`` moves
+    segment ``s``. Made once per compiled problem and shared by every :class:`Context` on it."""
+
+    def __init__(self, kin: Kinematics, cols: np.ndarray) -> None:
+        self.kin, self.cols = kin, np.asarray(cols, dtype=int)
+        self.sign = kin.dof_sign[self.cols].astype(float)
+        self.trans = np.flatnonzero(np.isin(self.cols, kin.trans_dofs))
+        self.moved = kin.seg_moved_by_dof[:, self.cols].astype(float)
 
 
 class Context:
     """End-effector module: site transforms and Jacobians (world frame) from one FK pass.
 
     ``cols`` are the DOF indices (into ``q``) the solver moves; every Jacobian has one column per
-    entry of ``cols`` (rotations in radians, translations in metres).
+    entry of ``cols`` (rotations in radians, translations in metres). ``columns`` are their
+    precomputed :class:`Columns` (made here when not given).
+
+    Per segment the Jacobian is a *twist*: moment rows ``m = o x a`` and angular rows ``a`` (3, ncols),
+    masked to the DOFs that move the segment (cached per segment). Then ``d(point p)/dq = m - [p]x a``
+    and ``d(direction v)/dq = -[v]x a``: any number of points and directions of one segment are one
+    small product with stacked ``[.]x`` matrices (:func:`skews`).
     """
 
-    def __init__(self, kin: Kinematics, fk: FKResult, cols: np.ndarray) -> None:
-        self.kin, self.fk, self.cols = kin, fk, cols
-        sign = kin.dof_sign[cols].astype(float)[:, None]
-        axes = fk.dof_axes[cols] * sign
+    def __init__(self, kin: Kinematics, fk: FKResult, cols: np.ndarray, columns: Columns | None = None) -> None:
+        if columns is None or columns.kin is not kin:
+            columns = Columns(kin, cols)
+        self.kin, self.fk, self.cols, self.columns = kin, fk, columns.cols, columns
+        a = fk.dof_axes[self.cols].T * columns.sign  # (3, ncols) signed world axes
+        o = fk.dof_origins[self.cols].T
         # d(point p)/dq = a x p - a x o = -[p]x a + (o x a); translations: a; d(vector v)/dq = -[v]x a
-        self._ang = axes.T.copy()
-        self._mom = _cross(fk.dof_origins[cols], axes).T
-        if kin.trans_dofs.size:
-            t = np.isin(cols, kin.trans_dofs)
-            self._mom[:, t] = self._ang[:, t]
-            self._ang[:, t] = 0.0
+        mom = np.empty_like(a)
+        mom[0] = o[1] * a[2] - o[2] * a[1]
+        mom[1] = o[2] * a[0] - o[0] * a[2]
+        mom[2] = o[0] * a[1] - o[1] * a[0]
+        if columns.trans.size:
+            t = columns.trans
+            mom[:, t] = a[:, t]
+            a[:, t] = 0.0
+        self._ang, self._mom = a, mom
+        self._twists: dict[int, tuple[np.ndarray, np.ndarray]] = {}
         self._com: tuple[np.ndarray, np.ndarray] | None = None
 
     def site(self, seg: int, location: np.ndarray) -> np.ndarray:
         """World 4x4 transform of a site at ``location`` on segment ``seg``."""
         return self.fk.segments[seg] @ location
 
+    def twist(self, seg: int) -> tuple[np.ndarray, np.ndarray]:
+        """(moment rows, angular rows), each (3, ncols), of the DOFs that move segment ``seg``."""
+        tw = self._twists.get(seg)
+        if tw is None:
+            m = self.columns.moved[seg]
+            tw = self._twists[seg] = (self._mom * m, self._ang * m)
+        return tw
+
     def point_jacobian(self, seg: int, point: np.ndarray) -> np.ndarray:
         """d(world point fixed on ``seg``)/dq over ``cols``, (3, ncols)."""
-        return (self._mom - _skew(point) @ self._ang) * self.kin.seg_moved_by_dof[seg, self.cols]
+        mom, ang = self.twist(seg)
+        return mom - skews(point) @ ang
 
     def vector_jacobian(self, seg: int, v: np.ndarray) -> np.ndarray:
         """d(world direction fixed on ``seg``)/dq over ``cols``, (3, ncols): ``u x v`` (3.8)."""
-        return (_skew(v) @ self._ang) * -1.0 * self.kin.seg_moved_by_dof[seg, self.cols]
+        return skews(-np.asarray(v, dtype=float)) @ self.twist(seg)[1]
+
+    def stacked_jacobian(self, seg: int, vectors: np.ndarray, weights: np.ndarray,
+                         point: bool = False) -> np.ndarray:
+        """Rows ``w_k d(v_k)/dq`` (3k, ncols) for directions ``v_k`` (rows of ``vectors``) fixed on
+        ``seg``, in one product; with ``point`` the first row of ``vectors`` is a point instead."""
+        mom, ang = self.twist(seg)
+        w = np.asarray(weights, dtype=float)
+        J = (skews(vectors) * np.repeat(-w, 3)[:, None]) @ ang
+        if point:
+            J[:3] += w[0] * mom
+        return J
 
     def com(self) -> tuple[np.ndarray, np.ndarray]:
         """World centre of mass (3,) and its Jacobian over ``cols`` (3, ncols); computed once."""
         if self._com is None:
-            kin, fk = self.kin, self.fk
-            self._com = (kin.centre_of_mass(fk), kin.com_jacobian(fk)[:, self.cols])
+            c, J = self.kin.com_and_jacobian(self.fk)
+            self._com = (c, J[:, self.cols])
         return self._com
 
 

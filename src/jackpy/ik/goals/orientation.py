@@ -7,6 +7,8 @@ rotation about ``x`` free (the book's "direction" goal).
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from jackpy.ik.goals.base import (
@@ -26,15 +28,20 @@ def orientation_terms(ctx: Context, seg: int, w: np.ndarray, target: np.ndarray,
     The angle is the full rotation angle when both axes count, else that of the counted axis.
     """
     xe, ye = w[:3, 0], w[:3, 1]
-    xg, yg = target[:, 0], target[:, 1]
+    xg, yg = target[:3, 0], target[:3, 1]
     f = np.concatenate([cx * (xe - xg), cy * (ye - yg)])
-    J = np.vstack([cx * ctx.vector_jacobian(seg, xe), cy * ctx.vector_jacobian(seg, ye)])
+    J = ctx.stacked_jacobian(seg, w[:3, :2].T, (cx, cy))
+    return f, J, orientation_degrees(w, target, cx, cy)
+
+
+def orientation_degrees(w: np.ndarray, target: np.ndarray, cx: float, cy: float) -> float:
+    """Angle error (degrees) between the site rotation ``w[:3, :3]`` and ``target`` (see above)."""
     if cx > 0 and cy > 0:
-        c = (np.trace(target.T @ w[:3, :3]) - 1.0) / 2.0
-        deg = float(np.degrees(np.arccos(np.clip(c, -1.0, 1.0))))
-    else:
-        deg = angle_deg(xe, xg) if cx > 0 else angle_deg(ye, yg) if cy > 0 else 0.0
-    return f, J, deg
+        c = (float(np.vdot(target[:3, :3], w[:3, :3])) - 1.0) / 2.0  # trace(target^T R)
+        return math.degrees(math.acos(min(max(c, -1.0), 1.0)))
+    if cx > 0:
+        return angle_deg(w[:3, 0], target[:3, 0])
+    return angle_deg(w[:3, 1], target[:3, 1]) if cy > 0 else 0.0
 
 
 class Orientation(SiteGoal):

@@ -8,7 +8,7 @@ from __future__ import annotations
 import numpy as np
 
 from jackpy.ik.goals.base import Chain, Context, GoalEval, SiteGoal
-from jackpy.ik.goals.orientation import orientation_terms
+from jackpy.ik.goals.orientation import orientation_degrees
 
 
 class PositionOrientation(SiteGoal):
@@ -26,10 +26,11 @@ class PositionOrientation(SiteGoal):
 
     def evaluate(self, ctx: Context) -> GoalEval:
         w = ctx.site(self.seg, self.location)
-        r = w[:3, 3]
         sp, so = np.sqrt(self.position_weight), np.sqrt(1.0 - self.position_weight)
-        fo, Jo, deg = orientation_terms(ctx, self.seg, w, self.target[:3, :3], self.cx, self.cy)
-        dp = r - self.target[:3, 3]
-        f = np.concatenate([sp * dp, so * fo])
-        J = np.vstack([sp * ctx.point_jacobian(self.seg, r), so * Jo])
-        return GoalEval(f, J, metres=float(np.linalg.norm(dp)), degrees=deg)
+        weights = np.array([sp, so * self.cx, so * self.cy])
+        # rows: position, x axis, y axis (the site's vs the target's), weighted; one Jacobian product
+        cur = w[:3, [3, 0, 1]].T
+        f = ((cur - self.target[:3, [3, 0, 1]].T) * weights[:, None]).reshape(9)
+        J = ctx.stacked_jacobian(self.seg, cur, weights, point=True)
+        deg = orientation_degrees(w, self.target, self.cx, self.cy)
+        return GoalEval(f, J, metres=float(np.linalg.norm(cur[0] - self.target[:3, 3])), degrees=deg)
