@@ -262,3 +262,23 @@ def test_resize_and_save_png(renderer, tmp_path):
     path = tmp_path / "frame.png"
     renderer.save_png(path)
     assert np.array_equal(np.asarray(Image.open(path)), img)
+
+
+def test_crease_normals_split_sharp_edges_and_keep_smooth_ones():
+    from jackpy.ui.render.mesh import Mesh, crease_normals
+
+    # a cube: 8 shared corners, every edge a 90 degree crease -> 24 vertices with face normals
+    import trimesh
+
+    cube = trimesh.creation.box(extents=(1, 1, 1))
+    v, n, f = crease_normals(cube.vertices, cube.faces, 60.0)
+    assert len(v) == 24
+    face_n = np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]])
+    face_n /= np.linalg.norm(face_n, axis=1, keepdims=True)
+    for k in range(3):  # every corner's normal is its face's normal
+        assert np.allclose(n[f[:, k]], face_n, atol=1e-6)
+    # a sphere is smooth everywhere: nothing is split
+    sphere = trimesh.creation.icosphere(subdivisions=3)
+    m = Mesh.from_triangles(sphere.vertices, sphere.faces)
+    assert len(m.vertices) == len(sphere.vertices)
+    assert np.allclose(np.linalg.norm(m.normals, axis=1), 1.0, atol=1e-5)

@@ -30,9 +30,15 @@ class Mesh:
             raise ValueError("triangle index out of range")
 
     @classmethod
-    def from_triangles(cls, vertices: np.ndarray, indices: np.ndarray) -> Mesh:
-        """A mesh with smooth, area-weighted vertex normals computed from its triangles."""
-        return cls(vertices, vertex_normals(vertices, indices), indices)
+    def from_triangles(cls, vertices: np.ndarray, indices: np.ndarray, crease_deg: float = 60.0) -> Mesh:
+        """A mesh with area-weighted normals, smooth except across edges sharper than ``crease_deg``.
+
+        A vertex shared by faces that meet at a crease (a cap on a limb, a box edge) is split so each
+        side keeps its own normal; without this, caps tilt the normals of the ring they close and
+        shading shows a stripe at every seam.
+        """
+        v, n, f = crease_normals(vertices, indices, crease_deg)
+        return cls(v, n, f)
 
     def bounds(self) -> tuple[np.ndarray, np.ndarray]:
         """Axis-aligned bounding box (min, max) in the local frame, m."""
@@ -49,6 +55,46 @@ def vertex_normals(vertices: np.ndarray, indices: np.ndarray) -> np.ndarray:
         np.add.at(n, f[:, k], face_n)
     length = np.linalg.norm(n, axis=1, keepdims=True)
     return n / np.where(length > 0.0, length, 1.0)
+
+
+def crease_normals(vertices: np.ndarray, indices: np.ndarray,
+                   crease_deg: float = 60.0) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Split vertices along creases; returns (vertices, unit normals, triangles).
+
+    Each triangle corner's normal is the area-weighted sum of the normals of the faces around its
+    vertex that lie within ``crease_deg`` of the corner's own face; corners of one vertex with the
+    same normal share one output vertex.
+    """
+    v = np.asarray(vertices, float).reshape(-1, 3)
+    f = np.asarray(indices, np.int64).reshape(-1, 3)
+    if len(f) == 0:
+        return v, np.zeros_like(v), f
+    area_n = np.cross(v[f[:, 1]] - v[f[:, 0]], v[f[:, 2]] - v[f[:, 0]])
+    length = np.linalg.norm(area_n, axis=1, keepdims=True)
+    unit_n = area_n / np.where(length > 0.0, length, 1.0)
+    corner_vertex = f.reshape(-1)
+    corner_face = np.repeat(np.arange(len(f)), 3)
+    order = np.argsort(corner_vertex, kind="stable")
+    sorted_vertex = corner_vertex[order]
+    starts = np.flatnonzero(np.r_[True, sorted_vertex[1:] != sorted_vertex[:-1]])
+    sizes = np.diff(np.r_[starts, len(order)])
+    group = np.repeat(np.arange(len(starts)), sizes)
+    first = starts[group]
+    cos_crease = np.cos(np.radians(crease_deg))
+    own = unit_n[corner_face[order]]
+    acc = np.zeros((len(order), 3))
+    for j in range(int(sizes.max())):
+        valid = j < sizes[group]
+        partner = corner_face[order[np.minimum(first + j, len(order) - 1)]]
+        keep = valid & (np.einsum("ij,ij->i", own, unit_n[partner]) >= cos_crease)
+        acc[keep] += area_n[partner[keep]]
+    norm = np.linalg.norm(acc, axis=1, keepdims=True)
+    acc = np.where(norm > 0.0, acc / np.where(norm > 0.0, norm, 1.0), own)
+    corner_normal = np.empty_like(acc)
+    corner_normal[order] = acc
+    key = np.column_stack([corner_vertex, np.round(corner_normal * 1e4).astype(np.int64)])
+    _, first_corner, inverse = np.unique(key, axis=0, return_index=True, return_inverse=True)
+    return v[corner_vertex[first_corner]], corner_normal[first_corner], inverse.reshape(-1, 3)
 
 
 def _orient_outward(vertices: np.ndarray, normals: np.ndarray, faces: np.ndarray) -> np.ndarray:
