@@ -1,4 +1,5 @@
-"""Benchmark: forward kinematics of the 69-segment, 136-DOF human-shaped tree.
+"""Benchmark: forward kinematics of the 69-segment, 136-DOF human-shaped tree and of the standard
+human (74 segments, 137 DOFs).
 
 Baseline: the straightforward implementation, one Python step per joint (and per DOF inside it)
 walking the tree from the root, the way the book's formulas read.
@@ -36,7 +37,16 @@ def per_joint_forward(figure: Figure, q: np.ndarray) -> dict[str, np.ndarray]:
 
 
 def _fk_case(quick: bool) -> Result:
-    figure = human_like_tree()
+    return _fk(human_like_tree(), "fk-human-136", quick)
+
+
+def _fk_standard(quick: bool) -> Result:
+    from jackpy.body import make_human
+
+    return _fk(make_human("male", 50), "fk-standard-human", quick)
+
+
+def _fk(figure: Figure, name: str, quick: bool) -> Result:
     rng = np.random.default_rng(0)
     q = rng.uniform(figure.lower, figure.upper)
     kin = figure.kinematics()
@@ -46,8 +56,9 @@ def _fk_case(quick: bool) -> Result:
     ref = per_joint_forward(figure, q)
     got = kin.forward(q, loc).segments
     err = max(np.abs(got[kin.segment_index[n]] - w).max() for n, w in ref.items())
-    return Result("fk-human-136", fast.median_ms, fast.p90_ms, base.median_ms,
+    return Result(name, fast.median_ms, fast.p90_ms, base.median_ms,
                   {"segments": len(figure.segments), "dofs": figure.ndof, "max_err": float(err)})
 
 
-CASES = [Case("fk-human-136", _fk_case, "FK of a 69-segment 136-DOF tree vs a per-joint Python loop")]
+CASES = [Case("fk-human-136", _fk_case, "FK of a 69-segment 136-DOF tree vs a per-joint Python loop"),
+         Case("fk-standard-human", _fk_standard, "FK of the standard human (74 segments, 137 DOFs), same baseline")]

@@ -186,9 +186,13 @@ class Compiled:
             self.arm = match_arm(fig, self.entries[0][0], self.cols)
 
     # ----- variables ------------------------------------------------------------------------------
-    def start(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-        """Current full ``x``, scaled variables ``z`` and the linear rows ``A z <= b`` at fixed rest."""
-        x = self.vm.x()
+    def start(self, q: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """Current full ``x``, scaled variables ``z`` and the linear rows ``A z <= b`` at fixed rest.
+
+        ``q``: the figure's displacements when the caller has them already (saves a walk over joints).
+        """
+        q = self.figure.q if q is None else q
+        x = np.concatenate([q[self.vm.free_dofs]] + [g.angles for g, _, _ in self.vm.group_slices])
         z = x[self.vidx] / self.scale
         if self.A_x.shape[0]:
             rest = x.copy()
@@ -211,9 +215,14 @@ class Compiled:
             q[idx] = g.driver(x[sl])
         return q
 
-    def apply(self, x: np.ndarray) -> None:
-        """Write variables ``x`` into the figure."""
-        self.vm.apply(x)
+    def apply(self, x: np.ndarray, q_base: np.ndarray | None = None) -> None:
+        """Write variables ``x`` into the figure (``q_base``: its displacements, when known)."""
+        if q_base is None:
+            self.vm.apply(x)
+            return
+        self.figure.q = self.q_of(q_base, x)
+        for g, _, sl in self.vm.group_slices:
+            g.angles = np.array(x[sl], dtype=float)
 
     # ----- evaluation ------------------------------------------------------------------------------
     def evaluate(self, x_base: np.ndarray, q_base: np.ndarray, z: np.ndarray) -> Evaluation:

@@ -72,7 +72,7 @@ def solve(problem: Problem, *, max_iterations: int = 100, tol_position: float = 
             status = ACHIEVED if run.achieved(ev, comp.levels[-1]) else UNREACHABLE
         result = run.result(ev, status, run.iterations, analytic=comp.arm is not None and analytic)
     if apply:
-        comp.apply(comp.x_of(run.x_base, run.z))
+        comp.apply(comp.x_of(run.x_base, run.z), run.q_base)
     return result
 
 
@@ -83,10 +83,11 @@ class _Run:
                  memory: int = 5) -> None:
         self.comp = comp
         self.tol_position, self.tol_angle, self.tol_step = tol_position, tol_angle, tol_step
-        self.x_base, z, self.A, self.b = comp.start()
         self.q_base = comp.figure.q
+        self.x_base, z, self.A, self.b = comp.start(self.q_base)
         self.lo, self.hi = comp.lower, comp.upper
         self.z = self._feasible(z)
+        self._all_rows = np.arange(self.A.shape[0])
         self.iterations = 0
         self.memory = memory
         self.evaluations = 0
@@ -208,7 +209,12 @@ class _Run:
                     return ev, "stationary"
                 metric.clear()
                 continue
-            inactive = np.setdiff1d(np.arange(self.A.shape[0]), rows)
+            if rows:
+                inactive = np.ones(self.A.shape[0], dtype=bool)
+                inactive[rows] = False
+                inactive = np.flatnonzero(inactive)
+            else:
+                inactive = self._all_rows
             alpha_max, var, row = self._ratio(z, d, free, inactive)
             if alpha_max <= 1e-15 and (var >= 0 or row >= 0):
                 fixed, side, rows = self._add(fixed, side, rows, var, row, d)
