@@ -7,7 +7,15 @@ import shutil
 from pathlib import Path
 
 import pytest
-from fuzz_helpers import FUZZ, byte_mutations, check_error, expect_only_project_errors, mutate, mutate_bytes, mutations
+from fuzz_helpers import (
+    FUZZ,
+    byte_mutations,
+    check_error,
+    expect_only_project_errors,
+    mutate,
+    mutate_bytes,
+    mutations,
+)
 from hypothesis import given
 from hypothesis import strategies as st
 

@@ -26,7 +26,15 @@ import numpy as np
 from jackpy.errors import FigureError, ImportCADError, ParseError
 from jackpy.peabody.geometry import Mesh, Psurf
 from jackpy.peabody.groups import JointGroup, LinearDriver
-from jackpy.peabody.lexer import EOF, IDENT, NUMBER, STRING, Token, TokenStream, tokenize
+from jackpy.peabody.lexer import (
+    EOF,
+    IDENT,
+    NUMBER,
+    STRING,
+    Token,
+    TokenStream,
+    tokenize,
+)
 from jackpy.peabody.model import (
     DEFAULT_ROTATION_LIMITS,
     DEFAULT_TRANSLATION_LIMITS,
@@ -36,7 +44,16 @@ from jackpy.peabody.model import (
     Joint,
     Segment,
 )
-from jackpy.peabody.notation import ANGLE_UNITS, CM, DEG, LENGTH_UNITS, PRIM_ARGS, RIGID_PRIMS, Prim, compose
+from jackpy.peabody.notation import (
+    ANGLE_UNITS,
+    CM,
+    DEG,
+    LENGTH_UNITS,
+    PRIM_ARGS,
+    RIGID_PRIMS,
+    Prim,
+    compose,
+)
 from jackpy.peabody.psurf_io import load_mesh
 from jackpy.peabody.transforms import AXES, is_rigid
 

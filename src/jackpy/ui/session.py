@@ -92,7 +92,7 @@ def _m(a: np.ndarray) -> list[float]:
     return [float(x) for x in np.asarray(a, float).reshape(-1)]
 
 
-def session_dict(app: "App") -> dict[str, Any]:
+def session_dict(app: App) -> dict[str, Any]:
     """The sidecar content for the app's current state."""
     cam = app.camera
     figs: dict[str, Any] = {}
@@ -138,7 +138,7 @@ def _matrix(values: Any, shape: tuple[int, ...], where: str) -> np.ndarray:
 
 
 # ---------------------------------------------------------------------- save / open
-def save_session(app: "App", path: str | os.PathLike[str], *, remember: bool = True) -> None:
+def save_session(app: App, path: str | os.PathLike[str], *, remember: bool = True) -> None:
     """Write the scene to ``path`` (``.env``) and its sidecar, atomically."""
     path = Path(path)
     if path.suffix.lower() != ".env":
@@ -280,7 +280,7 @@ def _check_sidecar(data: dict[str, Any]) -> None:
             jsonfile.num(jsonfile.required(c, name, "camera"), f"camera.{name}")
 
 
-def apply_session(app: "App", env: Environment, data: dict[str, Any] | None, base: Path | None) -> None:
+def apply_session(app: App, env: Environment, data: dict[str, Any] | None, base: Path | None) -> None:
     """Show a loaded scene with its goals, settings and camera."""
     from jackpy.ui.app import GoalEntry, Settings
 
@@ -334,7 +334,7 @@ def set_behavior(behavior: Any, enabled: bool, params: dict[str, Any]) -> None:
             setattr(behavior.params, k, old)
 
 
-def open_session(app: "App", path: str | os.PathLike[str]) -> None:
+def open_session(app: App, path: str | os.PathLike[str]) -> None:
     """Replace the app's scene with the one saved at ``path``."""
     path = Path(path)
     env, data = load_session(path)
@@ -344,7 +344,7 @@ def open_session(app: "App", path: str | os.PathLike[str]) -> None:
     app.info(f"opened {path}")
 
 
-def new_scene(app: "App") -> None:
+def new_scene(app: App) -> None:
     """Replace the scene with the default one."""
     env, base = default_scene()
     app.scene_dir = base
@@ -352,7 +352,7 @@ def new_scene(app: "App") -> None:
     app.session_path = None
 
 
-def import_cad_file(app: "App", path: str | os.PathLike[str], units: str = "m", up: str = "y") -> CADObject:
+def import_cad_file(app: App, path: str | os.PathLike[str], units: str = "m", up: str = "y") -> CADObject:
     """Add a CAD file to the scene (drawn translucent; picked and moved like any object)."""
     obj = add_cad(app.env, path, units, up)
     app.view.cad_figures.add(obj.name)
@@ -367,7 +367,7 @@ def recovery_path() -> Path:
     return home / "recovery" / "recovery.env"
 
 
-def autosave(app: "App") -> None:
+def autosave(app: App) -> None:
     """Write the recovery pair (without changing the session's own path)."""
     save_session(app, recovery_path(), remember=False)
 
@@ -378,7 +378,7 @@ def pending_recovery() -> Path | None:
     return p if p.is_file() else None
 
 
-def recover(app: "App", path: Path) -> None:
+def recover(app: App, path: Path) -> None:
     """Open the recovery file as an unsaved scene, then delete it."""
     open_session(app, path)
     app.session_path = None
