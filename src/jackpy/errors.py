@@ -14,7 +14,11 @@ class JackpyError(Exception):
 
 
 class ParseError(JackpyError):
-    """Malformed text in a file: carries file, line and column (1-based) and what was expected."""
+    """Malformed text in a file: carries file, line and column (1-based) and what was expected.
+
+    ``line = 0`` means no position applies (a schema error in a JSON file names its key path
+    instead); the message is then ``file: message``.
+    """
 
     exit_code = 2
 
@@ -23,7 +27,7 @@ class ParseError(JackpyError):
         self.line = line
         self.column = column
         self.message = message
-        super().__init__(f"{file}:{line}:{column}: {message}")
+        super().__init__(f"{file}:{line}:{column}: {message}" if line > 0 else f"{file}: {message}")
 
 
 class FigureError(JackpyError):

@@ -35,14 +35,10 @@ class Invalid(Exception):
 
 
 def schema_error(cls: type[JackpyError], file: str, exc: Invalid) -> JackpyError:
-    """``file: key.path: message`` as an error of class ``cls`` (a ParseError without a position:
-    line and column 0, and the message leaves them out)."""
-    text = f"{file}: {exc.where}: {exc.message}"
+    """``file: key.path: message`` as an error of class ``cls`` (a ParseError without a position)."""
     if issubclass(cls, ParseError):
-        err = cls(f"{exc.where}: {exc.message}", file, 0, 0)
-        err.args = (text,)
-        return err
-    return cls(text)
+        return cls(f"{exc.where}: {exc.message}", file)
+    return cls(f"{file}: {exc.where}: {exc.message}")
 
 
 def position_error(cls: type[JackpyError], message: str, file: str, line: int, column: int) -> JackpyError:
