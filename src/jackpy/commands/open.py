@@ -25,11 +25,11 @@ def run(args: argparse.Namespace) -> int:
     env, base = session.default_scene()
     app = App(env)
     app.scene_dir = base
+    if args.scene is not None:  # a bad scene is reported before any window opens
+        session.open_session(app, Path(args.scene))
     window = Window(app, "jackpy")
     try:
-        if args.scene is not None:
-            session.open_session(app, Path(args.scene))
-        else:
+        if args.scene is None:
             window.ui.recovery_offer = str(p) if (p := session.pending_recovery()) else None
         flock = getattr(args, "flock", None)
         if flock:
