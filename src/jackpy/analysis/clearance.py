@@ -8,12 +8,27 @@ distance with nearest points, which trimesh's own proximity queries (point-to-me
 need rtree) do not.
 
 Broad phase (vectorised numpy): every segment has a bounding sphere (segment frame); every object
-body has a world AABB (recomputed from its location each frame). Segment-object pairs are tested
-only when the sphere touches the AABB; segment-segment pairs only when their spheres overlap.
-Minimum clearance first measures the segment that was nearest that object in the previous query
-(frame coherence: its distance is usually already close to the answer), then visits the others in
-increasing order of the sphere-to-AABB lower bound and stops once that bound exceeds the best
-distance found.
+body has a world AABB (recomputed from its location each frame). Segment-object collision pairs are
+tested only when the sphere touches the AABB; segment-segment pairs only when their spheres overlap.
+
+Minimum clearance (issue 8: one exact fcl query between a large segment and a large object can take
+milliseconds) prunes with a :class:`~jackpy.analysis.distance_field.DistanceGrid` per body, built on
+the first clearance query in the body's frame, that gives sound lower and upper bounds on the
+distance from any point to the body's surface:
+
+1. per segment, from its bounding sphere's centre (+- the radius) and the sphere-to-AABB gap;
+2. for the segments whose lower bound is within the best upper bound: per vertex, and per triangle
+   (its vertices' smallest lower bound minus its cover radius, every point of a triangle being that
+   close to a vertex); large triangles whose bound is still in range are refined with points of a
+   regular subdivision. Vertex and refined bounds are cached per segment and reused while the
+   segment's pose relative to the body is unchanged (exactly the same numbers);
+3. one exact fcl query on the few triangles bounded lowest gives an exact upper bound; then one
+   exact query on a small BVH, built in the world, of every triangle whose lower bound is within it
+   gives the minimum (a triangle left out cannot be nearer). A contact found in the previous query
+   is tried first (frame coherence); touching is decided by fcl collision on the triangles that may
+   touch.
+
+The result is exact (the same triangle-triangle distances fcl computes for whole meshes).
 
 Self-collision skips adjacent segments (joined by a joint) and, with ``ignore_initial``, pairs
 already touching in the posture the checker was built in (their shapes overlap by design, e.g.
@@ -27,6 +42,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from jackpy.analysis.distance_field import DistanceGrid, triangle_cover_radius
 from jackpy.errors import JackpyError
 from jackpy.peabody.geometry import Mesh
 from jackpy.peabody.model import Figure
@@ -49,6 +65,13 @@ class Clearance:
     point_on_body: np.ndarray
 
 
+#: spacing (cover radius, metres) of the points on a segment's triangles whose grid bounds bound it
+_BOUND_SPACING = 0.01
+
+#: triangles in the first exact query of a clearance (an upper bound that narrows the rest)
+_SEED_TRIANGLES = 8
+
+
 def _bvh(mesh: Mesh):
     m = fcl.BVHModel()
     m.beginModel(len(mesh.vertices), len(mesh.faces))
@@ -56,6 +79,42 @@ def _bvh(mesh: Mesh):
                   np.ascontiguousarray(mesh.faces, dtype=np.int32))
     m.endModel()
     return m
+
+
+def _refinement(mesh: Mesh, spacing: float) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Per triangle of ``mesh``: its cover radius ``R`` (see :func:`triangle_cover_radius`), and for
+    one with ``R > spacing`` extra points, the vertices of its regular subdivision into ``n²``
+    similar triangles (``n = ceil(R / spacing)``), so that every point of it lies within ``R / n`` of
+    its vertices or those points. Returns ``(R, extra points, extra count per triangle, R / n)``,
+    the extra points in triangle order."""
+    v = np.asarray(mesh.vertices, dtype=float)
+    f = np.asarray(mesh.faces, dtype=np.int64)
+    r = triangle_cover_radius(v, f)
+    n = np.maximum(np.ceil(r / spacing).astype(np.int64), 1)
+    per_tri: dict[int, np.ndarray] = {}
+    for level in np.unique(n[n > 1]):
+        ks = np.flatnonzero(n == level)
+        i, j = np.meshgrid(np.arange(level + 1), np.arange(level + 1), indexing="ij")
+        corner = ((i == 0) & (j == 0)) | ((i == level) & (j == 0)) | ((i == 0) & (j == level))
+        keep = (i + j <= level) & ~corner
+        w1, w2 = i[keep] / level, j[keep] / level
+        tri = v[f[ks]]  # (m, 3, 3)
+        p = ((1.0 - w1 - w2)[None, :, None] * tri[:, None, 0] + w1[None, :, None] * tri[:, None, 1]
+             + w2[None, :, None] * tri[:, None, 2])
+        per_tri.update(zip(ks.tolist(), p))
+    counts = np.array([len(per_tri[k]) if k in per_tri else 0 for k in range(len(f))], dtype=np.int64)
+    extra = np.vstack([per_tri[k] for k in sorted(per_tri)]) if per_tri else np.zeros((0, 3))
+    return r, extra, counts, r / n
+
+
+def _ranges(starts: np.ndarray, stops: np.ndarray) -> np.ndarray:
+    """The concatenation of ``arange(a, b)`` for each pair (vectorised)."""
+    counts = stops - starts
+    total = int(counts.sum())
+    if total == 0:
+        return np.zeros(0, dtype=np.int64)
+    offsets = np.repeat(starts - np.r_[0, np.cumsum(counts)[:-1]], counts)
+    return offsets + np.arange(total)
 
 
 def _tf(t: np.ndarray):
@@ -77,7 +136,7 @@ class ClearanceChecker:
     """
 
     def __init__(self, figure: Figure, objects: Sequence[Figure] = (), self_collision: bool = True,
-                 ignore_initial: bool = True) -> None:
+                 ignore_initial: bool = True, grid_budget: int = 500_000) -> None:
         if fcl is None:
             raise JackpyError("collision and clearance need the package 'python-fcl' (pip install python-fcl)")
         self.figure = figure
@@ -85,6 +144,8 @@ class ClearanceChecker:
         self._kin = kin
         seg_idx, centres, radii, self._seg_obj = [], [], [], []
         self.segment_names: list[str] = []
+        verts, faces, vstart, fstart = [], [], [0], [0]
+        cover, xpts, xcount, xr = [], [], [], []
         for name in kin.segment_names:
             seg = figure.segments[name]
             mesh = seg.psurf.posed_mesh() if seg.psurf is not None else None
@@ -96,6 +157,28 @@ class ClearanceChecker:
             radii.append(r)
             self._seg_obj.append(fcl.CollisionObject(_bvh(mesh), fcl.Transform()))
             self.segment_names.append(name)
+            verts.append(np.asarray(mesh.vertices, dtype=float))
+            faces.append(np.asarray(mesh.faces, dtype=np.int64) + vstart[-1])
+            r, extra, count, fine = _refinement(mesh, _BOUND_SPACING)
+            cover.append(r)
+            xpts.append(extra)
+            xcount.append(count)
+            xr.append(fine)
+            vstart.append(vstart[-1] + len(mesh.vertices))
+            fstart.append(fstart[-1] + len(mesh.faces))
+        # all segments' vertices and triangles, concatenated (segment frames), for the grid bounds
+        self._verts = np.vstack(verts) if verts else np.zeros((0, 3))
+        self._faces = np.vstack(faces) if faces else np.zeros((0, 3), dtype=np.int64)
+        # per triangle: its cover radius (every point within it of a vertex) and, for large ones,
+        # extra points _xpts[_xptr[f]:_xptr[f + 1]] (segment frame) with a finer radius _xr[f]
+        self._cover = np.concatenate(cover) if cover else np.zeros(0)
+        self._xpts = np.vstack(xpts) if xpts else np.zeros((0, 3))
+        self._xptr = np.r_[0, np.cumsum(np.concatenate(xcount))] if xcount else np.zeros(1, dtype=np.int64)
+        self._xr = np.concatenate(xr) if xr else np.zeros(0)
+        self._vstart = np.array(vstart, dtype=np.int64)
+        self._fstart = np.array(fstart, dtype=np.int64)
+        self._fseg = np.repeat(np.arange(len(verts)), np.diff(self._fstart)) if verts else np.zeros(0, dtype=int)
+        self._vseg = np.repeat(np.arange(len(verts)), np.diff(self._vstart)) if verts else np.zeros(0, dtype=int)
         self._seg_idx = np.array(seg_idx, dtype=int)
         self._centre_local = np.array(centres).reshape(-1, 3)
         self._radius = np.array(radii)
@@ -105,6 +188,12 @@ class ClearanceChecker:
         self._body_src: list[tuple[Figure, str]] = []
         self._body_obj = []
         self._body_box_local: list[np.ndarray] = []
+        self._body_mesh: list[Mesh] = []
+        self._body_grid: list[DistanceGrid | None] = []
+        self._grid_budget = grid_budget
+        self._vb_cache: dict[int, dict[int, tuple]] = {}
+        self._last_touch: dict[str, tuple[int, int]] = {}
+        self._xlb_cache: dict[int, np.ndarray] = {}  # per body: refined triangle bounds (NaN: stale)
         for obj in self.objects:
             meshes = {n: s.psurf.posed_mesh() for n, s in obj.segments.items() if s.psurf is not None}
             meshes = {n: m for n, m in meshes.items() if m is not None and len(m.faces)}
@@ -113,7 +202,10 @@ class ClearanceChecker:
                 self._body_src.append((obj, n))
                 self._body_obj.append(fcl.CollisionObject(_bvh(m), fcl.Transform()))
                 self._body_box_local.append(m.bounds())
+                self._body_mesh.append(m)
+                self._body_grid.append(None)
         self._box_world = np.zeros((len(self.body_names), 2, 3))
+        self._body_world = np.tile(np.eye(4), (len(self.body_names), 1, 1))
         # self-collision pairs: not adjacent
         self._pairs = np.zeros((0, 2), dtype=int)
         if self_collision and len(self.segment_names) > 1:
@@ -125,7 +217,6 @@ class ClearanceChecker:
         self._seg_world = np.zeros((len(self.segment_names), 4, 4))
         self._centre_world = np.zeros((len(self.segment_names), 3))
         self._placed = np.zeros(len(self.segment_names), dtype=bool)
-        self._last_nearest: dict[str, int] = {}
         self.update()
         if ignore_initial and len(self._pairs):
             touching = {tuple(p) for p in self._colliding_pairs()}
@@ -144,6 +235,7 @@ class ClearanceChecker:
         for k, ((obj, seg), co, box) in enumerate(zip(self._body_src, self._body_obj, self._body_box_local)):
             t = obj.location if len(obj.segments) == 1 else obj.world_transforms()[seg]
             co.setTransform(_tf(t))
+            self._body_world[k] = t
             corners = np.array([[box[i, 0], box[j, 1], box[l, 2]] for i in (0, 1) for j in (0, 1) for l in (0, 1)])
             w = corners @ t[:3, :3].T + t[:3, 3]
             self._box_world[k] = (w.min(axis=0), w.max(axis=0))
@@ -191,43 +283,207 @@ class ClearanceChecker:
             out.update((a, b))
         return out
 
-    def clearance(self, obj: str) -> Clearance:
-        """Smallest distance from the figure's segments to object ``obj`` (a figure name: all its
-        bodies; or a body name)."""
+    def _grid(self, b: int) -> DistanceGrid:
+        """The distance grid of body ``b`` (built on first use, in the body's frame)."""
+        g = self._body_grid[b]
+        if g is None:
+            g = self._body_grid[b] = DistanceGrid(self._body_mesh[b], budget=self._grid_budget)
+        return g
+
+    def _bodies(self, obj: str) -> np.ndarray:
         bodies = np.array([k for k, (n, (f, _)) in enumerate(zip(self.body_names, self._body_src))
                            if n == obj or f.name == obj], dtype=int)
         if not len(bodies) or not len(self.segment_names):
             raise JackpyError(f"no object {obj!r} with geometry in the clearance check (objects: "
                               f"{', '.join(self.body_names) or 'none'}; segments with geometry: "
                               f"{len(self.segment_names)})")
-        gap = self._sphere_box_gap(bodies)
+        return bodies
+
+    def _segment_level(self, bodies: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Coarse bounds (nseg, nbody) on segment-to-body distance from the bounding spheres: the
+        sphere-to-AABB gap and the body's distance grid at the sphere centre, +- the radius."""
+        lb = self._sphere_box_gap(bodies)
+        ub = np.empty_like(lb)
+        for bi, b in enumerate(bodies):
+            t = self._body_world[b]
+            local = (self._centre_world - t[:3, 3]) @ t[:3, :3]
+            lo, hi = self._grid(b).bounds(local)
+            np.maximum(lb[:, bi], lo - self._radius, out=lb[:, bi])
+            ub[:, bi] = hi + self._radius
+        return lb, ub
+
+    def _vertex_bounds(self, segs: np.ndarray, b: int) -> tuple[np.ndarray, np.ndarray]:
+        """Grid bounds for the vertices of segments ``segs`` against body ``b``, concatenated in the
+        order of ``segs``. A segment whose pose relative to the body has not changed since its last
+        query reuses its bounds (exactly the same numbers: frame coherence without approximation)."""
+        t = self._body_world[b]
+        rot_inv, off = t[:3, :3].T, t[:3, 3]
+        rel = np.empty((len(segs), 3, 4))  # segment frame -> body frame
+        rel[:, :, :3] = np.einsum("ij,njk->nik", rot_inv, self._seg_world[segs, :3, :3])
+        rel[:, :, 3] = (self._seg_world[segs, :3, 3] - off) @ rot_inv.T
+        cache = self._vb_cache.setdefault(b, {})
+        todo = [j for j, k in enumerate(segs) if (c := cache.get(int(k))) is None or not np.array_equal(c[0], rel[j])]
+        if todo:
+            ks = segs[todo]
+            counts = self._vstart[ks + 1] - self._vstart[ks]
+            vidx = _ranges(self._vstart[ks], self._vstart[ks + 1])
+            rep = np.repeat(np.asarray(todo), counts)
+            local = np.einsum("nij,nj->ni", rel[rep, :, :3], self._verts[vidx]) + rel[rep, :, 3]
+            vlo, vhi = self._grid(b).bounds(local)
+            starts = np.r_[0, np.cumsum(counts)]
+            xlb = self._xlb_cache.get(b)
+            if xlb is not None:  # the refined triangle bounds of moved segments are stale
+                xlb[_ranges(self._fstart[ks], self._fstart[ks + 1])] = np.nan
+            for n, (j, k) in enumerate(zip(todo, ks)):
+                cache[int(k)] = (rel[j].copy(), vlo[starts[n]:starts[n + 1]], vhi[starts[n]:starts[n + 1]])
+        parts = [cache[int(k)] for k in segs]
+        return np.concatenate([c[1] for c in parts]), np.concatenate([c[2] for c in parts])
+
+    def _triangle_level(self, segs: np.ndarray, b: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """For segments ``segs`` against body ``b``: the segments' triangle indices (into the
+        concatenated arrays), a lower bound per triangle (its vertices' smallest grid bound minus the
+        triangle's cover radius), and per segment the lower bound (smallest of its triangles') and
+        upper bound (smallest of its vertices' grid upper bounds)."""
+        vlo, vhi = self._vertex_bounds(segs, b)
+        counts = self._vstart[segs + 1] - self._vstart[segs]
+        vidx = _ranges(self._vstart[segs], self._vstart[segs + 1])
+        lower = np.empty(len(self._verts))
+        lower[vidx] = vlo
+        fidx = _ranges(self._fstart[segs], self._fstart[segs + 1])
+        tri_lb = lower[self._faces[fidx]].min(axis=1) - self._cover[fidx]
+        fcounts = self._fstart[segs + 1] - self._fstart[segs]
+        seg_lb = np.minimum.reduceat(tri_lb, np.r_[0, np.cumsum(fcounts)[:-1]])
+        seg_ub = np.minimum.reduceat(vhi, np.r_[0, np.cumsum(counts)[:-1]])
+        return fidx, tri_lb, seg_lb, seg_ub
+
+    def _vb_vertex_min(self, f: np.ndarray, b: int) -> np.ndarray:
+        """Smallest cached vertex lower bound of each triangle ``f`` against body ``b``."""
+        cache = self._vb_cache[b]
+        segs = self._fseg[f]
+        out = np.empty(len(f))
+        for k in np.unique(segs):
+            m = segs == k
+            out[m] = cache[int(k)][1][self._faces[f[m]] - self._vstart[k]].min(axis=1)
+        return out
+
+    def _refine(self, fidx: np.ndarray, tri_lb: np.ndarray, b: int, bound: float) -> np.ndarray:
+        """Tighter lower bounds for the large triangles among ``fidx`` whose bound is within
+        ``bound``: their extra points' grid bounds minus the finer radius (the vertices' smallest
+        bound is ``tri_lb + cover``). Needs :meth:`_vertex_bounds` for their segments first."""
+        nx = self._xptr[fidx + 1] - self._xptr[fidx]
+        sel = np.flatnonzero((tri_lb <= bound + 1e-7) & (nx > 0))
+        if not len(sel):
+            return tri_lb
+        f = fidx[sel]
+        xlb = self._xlb_cache.setdefault(b, np.full(len(self._faces), np.nan))
+        need = f[np.isnan(xlb[f])]
+        if len(need):
+            counts = self._xptr[need + 1] - self._xptr[need]
+            xidx = _ranges(self._xptr[need], self._xptr[need + 1])
+            cache = self._vb_cache[b]
+            segs, inv = np.unique(self._fseg[need], return_inverse=True)
+            rel = np.array([cache[int(k)][0] for k in segs])
+            rep = np.repeat(inv.ravel(), counts)
+            local = np.einsum("nij,nj->ni", rel[rep, :, :3], self._xpts[xidx]) + rel[rep, :, 3]
+            xlo, _ = self._grid(b).bounds(local)
+            xmin = np.minimum.reduceat(xlo, np.r_[0, np.cumsum(counts)[:-1]])
+            vmin = self._vb_vertex_min(need, b)
+            xlb[need] = np.minimum(vmin, xmin) - self._xr[need]
+        fine = xlb[f]
+        out = tri_lb.copy()
+        out[sel] = np.maximum(tri_lb[sel], fine)
+        return out
+
+    def segment_bounds(self, obj: str) -> tuple[np.ndarray, np.ndarray]:
+        """Lower and upper bounds (metres, one per entry of :attr:`segment_names`) on each segment's
+        distance to object ``obj``, from the object's distance grid and no exact query: what
+        :meth:`clearance` prunes with. The lower bound never exceeds the true distance, the upper
+        bound is never below it."""
+        bodies = self._bodies(obj)
+        segs = np.arange(len(self.segment_names))
+        lower = np.full(len(segs), np.inf)
+        upper = np.full(len(segs), np.inf)
+        coarse_lb, coarse_ub = self._segment_level(bodies)
+        for bi, b in enumerate(bodies):
+            fidx, tri_lb, _, ub = self._triangle_level(segs, b)
+            tri_lb = self._refine(fidx, tri_lb, b, np.inf)
+            lb = np.minimum.reduceat(tri_lb, self._fstart[:-1])
+            np.minimum(lower, np.maximum(lb, coarse_lb[:, bi]), out=lower)
+            np.minimum(upper, np.minimum(ub, coarse_ub[:, bi]), out=upper)
+        return np.maximum(lower, 0.0), upper
+
+    def clearance(self, obj: str) -> Clearance:
+        """Smallest distance from the figure's segments to object ``obj`` (a figure name: all its
+        bodies; or a body name). Exact (fcl's triangle distances); the object's distance grid only
+        decides which triangles need the exact query."""
+        bodies = self._bodies(obj)
+        eps = 1e-7
         creq = fcl.CollisionRequest(num_max_contacts=1, enable_contact=True)
-        for s, bi in np.argwhere(gap <= 0.0):  # touching: distance 0 at a contact (collide is cheap)
+        last = self._last_touch.get(obj)
+        if last is not None:  # frame coherence: the pair that touched last time usually still does
+            s, b = last
             res = fcl.CollisionResult()
-            if fcl.collide(self._place(s), self._body_obj[bodies[bi]], creq, res):
+            if fcl.collide(self._place(s), self._body_obj[b], creq, res):
                 p = np.array(res.contacts[0].pos, dtype=float) if res.contacts else self._centre_world[s]
-                return Clearance(0.0, self.segment_names[s], self.body_names[bodies[bi]], p, p.copy())
-        order = np.argsort(gap, axis=None)
-        if obj in self._last_nearest:
-            order = np.r_[self._last_nearest[obj], order]
-        best: Clearance | None = None
-        best_flat = -1
-        req = fcl.DistanceRequest(enable_nearest_points=True)
-        visited = set()
-        for flat in order:
-            if flat in visited:
+                return Clearance(0.0, self.segment_names[s], self.body_names[b], p, p.copy())
+            del self._last_touch[obj]
+        lb, ub = self._segment_level(bodies)
+        upper = float(ub.min())
+        # per body: the triangles (of the segments that might be nearest) that might be nearest
+        cand = []
+        for bi, b in enumerate(bodies):
+            segs = np.flatnonzero(lb[:, bi] <= upper + eps)
+            if not len(segs):
                 continue
-            visited.add(flat)
-            s, bi = np.unravel_index(flat, gap.shape)
-            if best is not None and gap[s, bi] >= best.distance:
+            fidx, tri_lb, _, seg_ub = self._triangle_level(segs, b)
+            upper = min(upper, float(seg_ub.min()))
+            cand.append((int(b), fidx, tri_lb))
+        best: Clearance | None = None
+        req = fcl.DistanceRequest(enable_nearest_points=True)
+        if cand and upper > 0.0:  # an exact upper bound first: the few triangles bounded lowest
+            b, fidx, tri_lb = min(cand, key=lambda c: float(c[2].min()))
+            if float(tri_lb.min()) > 0.0:
+                best = self._distance(fidx[np.argsort(tri_lb)[:_SEED_TRIANGLES]], b, req)
+                upper = min(upper, best.distance)
+        cand = [(b, fidx, self._refine(fidx, tri_lb, b, upper)) for b, fidx, tri_lb in cand]
+        cand = [(float(tri_lb.min()), b, fidx, tri_lb) for b, fidx, tri_lb in cand]
+        cand = [c for c in cand if c[0] <= upper + eps]
+        cand.sort(key=lambda c: c[0])
+        for low, b, fidx, tri_lb in cand:  # touching: distance 0 at a contact
+            if low > 0.0:
                 break
-            b = bodies[bi]
-            res = fcl.DistanceResult()
-            d = max(float(fcl.distance(self._place(s), self._body_obj[b], req, res)), 0.0)
-            if best is None or d < best.distance:
-                p1, p2 = (np.array(p, dtype=float) for p in res.nearest_points)
-                best = Clearance(d, self.segment_names[s], self.body_names[b], p1, p2)
-                best_flat = int(flat)
+            sub = fidx[tri_lb <= eps]
+            res = fcl.CollisionResult()
+            if fcl.collide(self._world_triangles(sub), self._body_obj[b], creq, res):
+                c = res.contacts[0] if res.contacts else None
+                s = self._fseg[sub[c.b1 if c is not None else 0]]
+                p = np.array(c.pos, dtype=float) if c is not None else self._centre_world[s]
+                self._last_touch[obj] = (int(s), int(b))
+                return Clearance(0.0, self.segment_names[s], self.body_names[b], p, p.copy())
+        for low, b, fidx, tri_lb in cand:
+            bound = upper if best is None else min(upper, best.distance)
+            if low > bound + eps:
+                break
+            # one exact query over every triangle that could be nearest (a small BVH, world frame)
+            c = self._distance(fidx[tri_lb <= bound + eps], b, req)
+            if best is None or c.distance < best.distance:
+                best = c
         assert best is not None
-        self._last_nearest[obj] = best_flat
         return best
+
+    def _distance(self, fidx: np.ndarray, b: int, req) -> Clearance:
+        """Exact distance from the segments' triangles ``fidx`` to body ``b``."""
+        res = fcl.DistanceResult()
+        d = max(float(fcl.distance(self._world_triangles(fidx), self._body_obj[b], req, res)), 0.0)
+        p1, p2 = (np.array(p, dtype=float) for p in res.nearest_points)
+        s = self._fseg[fidx[res.b1]]
+        return Clearance(d, self.segment_names[s], self.body_names[b], p1, p2)
+
+    def _world_triangles(self, fidx: np.ndarray):
+        """A collision object of the segments' triangles ``fidx`` (indices into the concatenated
+        arrays) posed in the world, its primitive ``i`` being triangle ``fidx[i]``."""
+        tris = self._faces[fidx]
+        used, inv = np.unique(tris, return_inverse=True)
+        t = self._seg_world[self._vseg[used]]
+        world = np.einsum("nij,nj->ni", t[:, :3, :3], self._verts[used]) + t[:, :3, 3]
+        return fcl.CollisionObject(_bvh(Mesh(world, inv.reshape(-1, 3))), fcl.Transform())
