@@ -51,7 +51,7 @@ def test_hand_drag_keeps_balance_and_feet(human):
 
 
 @pytest.mark.parametrize("grip", ["power", "precision", "disc", "small disc", "tripod"])
-def test_grasp_closes_fingers_onto_a_cylinder(human, grip):
+def test_grasp_closes_digits_and_thumb_onto_a_cylinder(human, grip):
     from jackpy.behaviors.grasp import GraspObject
 
     f = body.make_human("male", 50)
@@ -64,5 +64,7 @@ def test_grasp_closes_fingers_onto_a_cylinder(human, grip):
     site[:3, :3] = np.array([[0, 0, 1], [0, 1, 0], [-1, 0, 0]]).T
     obj = GraspObject("bar", "cylinder", (0.04, 0.15, 0.0), pose, site)
     r = m.grasp(lp, "right", obj, grip, frames=20, attach=False)
-    fingers = {k: v for k, v in r.clearance.items() if k != "thumb"}
-    assert all(-0.003 <= v <= 0.001 for v in fingers.values()), fingers
+    contacts = r.contact_clearance  # every digit of the grip, the thumb included
+    assert "thumb" in contacts and len(contacts) == len(r.contacts)
+    assert all(-0.003 < v < 0.003 for v in contacts.values()), contacts
+    assert min(r.clearance.values()) > -0.003, r.clearance  # tucked digits stay out too
