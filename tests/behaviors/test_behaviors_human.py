@@ -50,6 +50,12 @@ def test_hand_drag_keeps_balance_and_feet(human):
         assert np.linalg.norm(f.site_world(*a.feet[s].ball)[:3, 3] - p) < 1e-3
 
 
+#: per grip: cylinder (diameter, length) and whether its axis runs across the palm (else along the
+#: palm normal: a disc held by its rim)
+GRIP_OBJECTS = {"power": (0.04, 0.15, True), "precision": (0.015, 0.10, True), "disc": (0.08, 0.02, False),
+                "small disc": (0.03, 0.015, False), "tripod": (0.02, 0.10, True)}
+
+
 @pytest.mark.parametrize("grip", ["power", "precision", "disc", "small disc", "tripod"])
 def test_grasp_closes_digits_and_thumb_onto_a_cylinder(human, grip):
     from jackpy.behaviors.grasp import GraspObject
@@ -59,10 +65,13 @@ def test_grasp_closes_digits_and_thumb_onto_a_cylinder(human, grip):
     lp = BehaviorLoop(f, a)
     palm = f.site_world(*a.hands["right"].palm)
     pose = np.eye(4)
-    pose[:3, 3] = palm[:3, 3] + np.array([0.0, 0.2, 0.35])
+    # in front of the chest, where the arm reaches the palm goal's orientation too (the grip assumes it)
+    pose[:3, 3] = palm[:3, 3] + np.array([0.12, 0.25, 0.4])
+    diameter, length, across = GRIP_OBJECTS[grip]
     site = np.eye(4)
-    site[:3, :3] = np.array([[0, 0, 1], [0, 1, 0], [-1, 0, 0]]).T
-    obj = GraspObject("bar", "cylinder", (0.04, 0.15, 0.0), pose, site)
+    site[:3, :3] = (np.array([[0, 0, 1], [0, 1, 0], [-1, 0, 0]]).T if across  # fingers forward round a vertical bar
+                    else np.array([[0, 0, 1], [1, 0, 0], [0, 1, 0]]).T)  # palm down on a disc, fingers forward
+    obj = GraspObject("thing", "cylinder", (diameter, length, 0.0), pose, site)
     r = m.grasp(lp, "right", obj, grip, frames=20, attach=False)
     contacts = r.contact_clearance  # every digit of the grip, the thumb included
     assert "thumb" in contacts and len(contacts) == len(r.contacts)

@@ -23,10 +23,10 @@ that every contacting digit ends within 1 mm of the object, see tests/behaviors/
 grip           digits          preshape (thumb CMC abduction, flexion)          palm centre
 =============  ==============  ===============================================  ==================
 power          all five        fingers straight, thumb 0°, 15° (thenar on it)   12 mm off surface
-precision      thumb, index    fingers 15 %, others tucked, thumb 20°, -20°     6 cm off surface
+precision      thumb, index    fingers 15 %, others tucked, thumb 20°, 0°       7.5 cm off, 2 cm thumbwards
 disc           all five        fingers 10 %, thumb lateral 40°, 0°              3.5 cm off the face
 small disc     thumb+2         as disc, three digits, object 15 mm thumbwards   4 cm off the face
-tripod         thumb+2         fingers 20 %, others tucked, thumb 20°, -20°     5 cm off surface
+tripod         thumb+2         fingers 20 %, others tucked, thumb 20°, 0°       7.5 cm off, 2 cm thumbwards
 =============  ==============  ===============================================  ==================
 """
 
@@ -117,12 +117,12 @@ LATERAL = (("mcp", 0, 1.0), ("ip", 0, 1.0), ("cmc", 1, 1.0))
 GRIP_TYPES: dict[str, GripType] = {
     # the thenar eminence (thumb metacarpal) rests on the handle, so the palm centre stays 12 mm off it
     "power": GripType((0, 1, 2, 3, 4), 0.0, 0.0, 0.012, thumb_cmc=(0.0, _D(15.0)), thumb_close=OPPOSE),
-    "precision": GripType((0, 1), 0.15, 0.9, 0.06, thumb_cmc=(_D(20.0), _D(-20.0)), thumb_close=OPPOSE),
+    "precision": GripType((0, 1), 0.15, 0.9, 0.075, across=0.02, thumb_cmc=(_D(20.0), 0.0), thumb_close=OPPOSE),
     "disc": GripType((0, 1, 2, 3, 4), 0.1, 0.0, 0.035, thumb_cmc=(_D(40.0), 0.0), thumb_close=LATERAL,
                      thumb_mode="lateral"),
     "small disc": GripType((0, 1, 2), 0.1, 0.9, 0.04, across=0.015, thumb_cmc=(_D(40.0), 0.0), thumb_close=LATERAL,
                            thumb_mode="lateral"),
-    "tripod": GripType((0, 1, 2), 0.2, 0.9, 0.05, thumb_cmc=(_D(20.0), _D(-20.0)), thumb_close=OPPOSE),
+    "tripod": GripType((0, 1, 2), 0.2, 0.9, 0.075, across=0.02, thumb_cmc=(_D(20.0), 0.0), thumb_close=OPPOSE),
 }
 
 
