@@ -4,7 +4,15 @@ import numpy as np
 import pytest
 
 from jackpy.errors import FigureError
-from jackpy.peabody import Dof, Figure, Joint, JointGroup, LinearDriver, Segment, VariableMap
+from jackpy.peabody import (
+    Dof,
+    Figure,
+    Joint,
+    JointGroup,
+    LinearDriver,
+    Segment,
+    VariableMap,
+)
 from jackpy.peabody.transforms import translation
 
 
@@ -59,3 +67,31 @@ def test_joint_in_two_groups_is_rejected():
     g = JointGroup("again", ["dip"], ["a"], LinearDriver(np.ones((1, 1))), lower=[0], upper=[1])
     with pytest.raises(FigureError, match="dip"):
         f.add_group(g)
+
+
+def test_batch_evaluation_matches_single_samples():
+    from jackpy.body.shoulder import SHOULDER_LOWER, SHOULDER_UPPER, ShoulderDriver
+    from jackpy.peabody.groups import driver_batch
+
+    rng = np.random.default_rng(4)
+    lin = LinearDriver(np.array([[0.5], [0.3], [0.2]]), offset=[0.1, 0.0, -0.1])
+    th = rng.uniform(0, 2, (50, 1))
+    np.testing.assert_allclose(lin.batch(th), [lin(t) for t in th], atol=1e-15)
+    sh = ShoulderDriver()
+    th = rng.uniform(SHOULDER_LOWER, SHOULDER_UPPER, (500, 3))
+    th[:5, 0] = np.radians([131.4, 130.0, 0.0, 180.0, 131.0])  # both pieces of Otani's betas
+    np.testing.assert_allclose(sh.batch(th), [sh(t) for t in th], atol=1e-12)
+
+    class NoBatch:
+        def __call__(self, theta):
+            return np.array([theta[0], 2 * theta[0]])
+
+    np.testing.assert_allclose(driver_batch(NoBatch(), th[:7, :1]), np.c_[th[:7, 0], 2 * th[:7, 0]])
+    np.testing.assert_allclose(driver_batch(sh, th[:7]), sh.batch(th[:7]))
+
+
+def test_feasible_rows_applies_box_and_linear_limits():
+    g = finger().groups["curl"]
+    rows = g.feasible_rows(np.radians([[-1.0], [0.0], [150.0], [165.0], [210.0]]))
+    assert rows.tolist() == [False, True, True, False, False]
+    assert all(r == g.is_feasible(t) for r, t in zip(rows, np.radians([[-1.0], [0.0], [150.0], [165.0], [210.0]])))

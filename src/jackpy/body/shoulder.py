@@ -49,6 +49,18 @@ def allocate(phi_deg: float, theta_deg: float) -> tuple[float, float, float, flo
     return float(phi_c), float(theta_c), float(phi_deg - phi_c), float(theta_deg - theta_c)
 
 
+def allocate_batch(phi_deg: np.ndarray, theta_deg: np.ndarray) -> tuple[np.ndarray, ...]:
+    """:func:`allocate` over arrays (degrees, any matching shapes)."""
+    phi = np.asarray(phi_deg, dtype=float)
+    th = np.asarray(theta_deg, dtype=float)
+    b1 = np.where(phi <= 131.4, 0.2514 * phi + 91.076, -0.035 * phi + 128.7)
+    b2 = np.where(phi <= 130.0, 0.21066 * phi + 92.348, 120.0)
+    c = np.cos(np.radians(th))
+    phi_c = c * b1 + (1.0 - c) * b2 - 90.0
+    theta_c = 0.2 * th
+    return phi_c, theta_c, phi - phi_c, th - theta_c
+
+
 def default_twist(phi_deg: float, theta_s_deg: float) -> float:
     """τ₀ = (ϕ/90) θ_s, degrees (eq. 2.17 applied to the shoulder's share, as in 2.23)."""
     return phi_deg / 90.0 * theta_s_deg
@@ -62,6 +74,14 @@ class ShoulderDriver:
         phi_c, theta_c, _, theta_s = allocate(phi, th)
         first = tau + default_twist(phi, theta_s) - theta_s
         return np.radians([phi_c, theta_c, -phi_c, first, phi, theta_s])
+
+    def batch(self, thetas: np.ndarray) -> np.ndarray:
+        """(N, 3) group angles -> (N, 6) member displacements, row ``i`` equal to ``self(thetas[i])``."""
+        d = np.degrees(np.atleast_2d(np.asarray(thetas, dtype=float)))
+        phi, th, tau = d[:, 0], d[:, 1], d[:, 2]
+        phi_c, theta_c, _, theta_s = allocate_batch(phi, th)
+        first = tau + default_twist(phi, theta_s) - theta_s
+        return np.radians(np.stack([phi_c, theta_c, -phi_c, first, phi, theta_s], axis=1))
 
     def jacobian(self, theta: np.ndarray, h: float = 1e-7) -> np.ndarray:
         theta = np.asarray(theta, dtype=float)

@@ -21,7 +21,12 @@ if TYPE_CHECKING:
 
 
 class Driver(Protocol):
-    """Maps group angles (n,) to the concatenated member displacements (m,)."""
+    """Maps group angles (n,) to the concatenated member displacements (m,).
+
+    A driver may also have ``batch(thetas)``: (N, n) group angles -> (N, m) displacements, row ``i``
+    equal to ``driver(thetas[i])``, vectorised (the workspace sampler uses it; :func:`driver_batch`
+    falls back to one call per row when it is missing).
+    """
 
     def __call__(self, theta: np.ndarray) -> np.ndarray: ...
 
@@ -45,8 +50,22 @@ class LinearDriver:
     def __call__(self, theta: np.ndarray) -> np.ndarray:
         return self.matrix @ theta + self.offset
 
+    def batch(self, thetas: np.ndarray) -> np.ndarray:
+        """(N, n) group angles -> (N, m) member displacements."""
+        return np.atleast_2d(np.asarray(thetas, dtype=float)) @ self.matrix.T + self.offset
+
     def jacobian(self, theta: np.ndarray) -> np.ndarray:
         return self.matrix
+
+
+def driver_batch(driver: Driver, thetas: np.ndarray) -> np.ndarray:
+    """Member displacements (N, m) for group angles ``thetas`` (N, n): the driver's own ``batch``
+    when it has one, else one call per row."""
+    thetas = np.atleast_2d(np.asarray(thetas, dtype=float))
+    batch = getattr(driver, "batch", None)
+    if batch is not None:
+        return np.asarray(batch(thetas), dtype=float)
+    return np.array([np.asarray(driver(t), dtype=float) for t in thetas]).reshape(len(thetas), -1)
 
 
 @dataclass
@@ -81,13 +100,21 @@ class JointGroup:
     def nangles(self) -> int:
         return len(self.angle_names)
 
+    def feasible_rows(self, thetas: np.ndarray, tol: float = 1e-9) -> np.ndarray:
+        """Boolean (N,): which rows of ``thetas`` (N, n) respect the box and the linear limits."""
+        thetas = np.atleast_2d(np.asarray(thetas, dtype=float))
+        ok = np.all((thetas >= self.lower - tol) & (thetas <= self.upper + tol), axis=1)
+        if self.A.size:
+            ok &= np.all(thetas @ self.A.T <= self.b + tol, axis=1)
+        return ok
+
     def is_feasible(self, theta: np.ndarray, tol: float = 1e-9) -> bool:
         """True when ``theta`` respects the box and the linear limits."""
         theta = np.asarray(theta, dtype=float)
         ok = bool(np.all(theta >= self.lower - tol) and np.all(theta <= self.upper + tol))
         return ok and bool(np.all(self.A @ theta <= self.b + tol))
 
-    def set_angles(self, figure: "Figure", theta: np.ndarray) -> None:
+    def set_angles(self, figure: Figure, theta: np.ndarray) -> None:
         """Set the group angles and drive the member joints; infeasible angles raise FigureError."""
         theta = np.asarray(theta, dtype=float).reshape(self.nangles)
         if not self.is_feasible(theta):
@@ -96,7 +123,7 @@ class JointGroup:
         self.angles = theta.copy()
         self.apply(figure)
 
-    def apply(self, figure: "Figure") -> None:
+    def apply(self, figure: Figure) -> None:
         """Write the driver's member displacements into the figure's joints."""
         values = np.asarray(self.driver(self.angles), dtype=float)
         start = 0
@@ -116,7 +143,7 @@ class VariableMap:
     groups' ``A x <= b`` rows lifted to the full ``x``.
     """
 
-    def __init__(self, figure: "Figure") -> None:
+    def __init__(self, figure: Figure) -> None:
         self.figure = figure
         names = figure.dof_names()
         grouped = np.zeros(figure.ndof, dtype=bool)
