@@ -56,7 +56,7 @@ class FKResult:
 class Kinematics:
     """The flattened rooted tree of a figure; call :meth:`forward` with displacements ``q``."""
 
-    def __init__(self, figure: "Figure") -> None:
+    def __init__(self, figure: Figure) -> None:
         figure.validate(check_limits=False)
         self.figure_name = figure.name
         self.segment_names: list[str] = []
@@ -87,7 +87,7 @@ class Kinematics:
             self.segment_names.append(s)
             for ji in by_seg[s]:
                 j = joints[ji]
-                other, down = (j.to_seg, 1) if j.from_seg == s else (j.from_seg, -1)
+                other = j.to_seg if j.from_seg == s else j.from_seg
                 if other in seen:
                     continue
                 seen.add(other)
