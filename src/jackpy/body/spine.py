@@ -209,8 +209,9 @@ class SpineDriver:
         w = self.weights
         key = (theta.tobytes(), w.bottom, w.top, w.initiator, w.resistor, w.resistance, w.spread,
                self.zero_interpolation)
-        if self._cache is not None and self._cache[0] == key:
-            return self._cache[1].copy(), self._cache[2].copy()
+        cached = self._cache  # one read: the entry is replaced whole, never edited
+        if cached is not None and cached[0] == key:
+            return cached[1].copy(), cached[2].copy()
         out = self.rest.copy()
         jac = np.zeros(out.shape + (len(SPINE_ANGLES),))
         for c, (a, t) in enumerate(zip(SPINE_ANGLES, np.asarray(theta, dtype=float))):
