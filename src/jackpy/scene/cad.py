@@ -42,11 +42,11 @@ FORMATS: dict[str, str] = {
     ".3mf": "3mf", ".dae": "dae", ".step": "step", ".stp": "step",
 }
 
-#: the optional package each format needs beyond trimesh, numpy and networkx
-_EXTRAS: dict[str, tuple[str, str]] = {
-    "3mf": ("lxml", "lxml"),
-    "dae": ("collada", "pycollada"),
-    "step": ("cascadio", "cascadio"),
+#: the optional packages (module, pip name) each format needs beyond trimesh and numpy
+_EXTRAS: dict[str, tuple[tuple[str, str], ...]] = {
+    "3mf": (("lxml", "lxml"), ("networkx", "networkx")),
+    "dae": (("collada", "pycollada"),),
+    "step": (("cascadio", "cascadio"),),
 }
 
 #: triangle count above which :meth:`CADObject.display_mesh` decimates by default
@@ -197,13 +197,12 @@ def read_mesh(path: Path) -> Mesh:
         raise ImportCADError(f"{path}: unsupported CAD format {ext or '(no extension)'!r}; "
                              f"supported: {', '.join(sorted(FORMATS))}")
     kind = FORMATS[ext]
-    if kind in _EXTRAS:
-        module, package = _EXTRAS[kind]
+    for module, package in _EXTRAS.get(kind, ()):
         try:
             __import__(module)
         except ImportError:
             raise ImportCADError(f"{path}: reading {kind.upper()} needs the optional package "
-                                 f"{package!r} (pip install {package})") from None
+                                 f"{package!r} (pip install {package}, or jackpy[cad])") from None
     if not path.is_file():
         raise ImportCADError(f"{path}: no such file")
     try:
