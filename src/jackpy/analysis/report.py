@@ -24,13 +24,20 @@ import numpy as np
 from jackpy.analysis.clearance import ClearanceChecker
 from jackpy.analysis.offscreen import Body, OffscreenRenderer, look_at, perspective
 from jackpy.analysis.parts import figure_parts
-from jackpy.analysis.reach import point_reach
+from jackpy.analysis.reach import Posture, point_reach
 from jackpy.analysis.statics import Load, joint_torques
 from jackpy.analysis.strength import (
-    dof_strengths, joint_utilisation, torque_vertex_colours, utilisation,
+    dof_strengths,
+    joint_utilisation,
+    torque_vertex_colours,
+    utilisation,
 )
 from jackpy.analysis.view import (
-    environment_bodies, eye_view, figure_bodies, object_visibility, point_visibility,
+    environment_bodies,
+    eye_view,
+    figure_bodies,
+    object_visibility,
+    point_visibility,
 )
 from jackpy.analysis.workspace import Chain, reachable_workspace
 from jackpy.atomic import atomic_write_bytes, atomic_write_text
@@ -39,12 +46,16 @@ from jackpy.peabody.model import Figure
 from jackpy.scene.workplace import Workplace, resolve_target, stand_figure
 
 PICTURE_SIZE = (640, 480)
+#: how the report names each point-reach mode
+REACH_MODE_TEXT = {"arm": "arm only (torso and feet fixed)", "body": "whole body, feet planted, balanced",
+                   "step": "whole body, balanced, allowed to step"}
 
 
 @dataclass
 class Options:
     """What to analyse: figure sizes ``(sex, percentile)``, reach and view targets (``object.site``
-    or ``object``), the load in the hand (kg), the hand, and the workspace resolution (cells per axis)."""
+    or ``object``), the load in the hand (kg), the hand, the workspace resolution (cells per axis)
+    and the point-reach mode (``"arm"``, ``"body"`` or ``"step"``, see :func:`point_reach`)."""
 
     figures: list[tuple[str, float]]
     reach: list[str] = field(default_factory=list)
@@ -52,6 +63,7 @@ class Options:
     load_kg: float = 0.0
     hand: str = "right"
     resolution: int = 48
+    reach_mode: str = "arm"
 
 
 def parse_figures(text: str) -> list[tuple[str, float]]:
@@ -91,17 +103,19 @@ def analyse_figure(wp: Workplace, figure: Figure, opts: Options, renderer: Offsc
     stand_figure(figure, wp.stand)
     parts = figure_parts(figure)
     hand = parts.hands[opts.hand]
-    q_neutral = figure.q
+    neutral = Posture.of(figure)
     res: dict[str, Any] = {"figure": figure.name, "stature_m": _stature(figure), "hand": opts.hand}
     # --- reach --------------------------------------------------------------------------------
     reaches = {}
     postures = {}
     for ref in opts.reach:
         _, p = resolve_target(wp.env, ref)
-        r = point_reach(figure, p, opts.hand)
-        postures[ref] = r.q
+        r = point_reach(figure, p, opts.hand, mode=opts.reach_mode)
+        postures[ref] = r.posture
         reaches[ref] = {"reached": r.reached, "shortfall_m": r.shortfall, "text": r.describe(),
-                        "target": p.tolist(), "ik_status": r.status}
+                        "target": p.tolist(), "ik_status": r.status, "mode": r.mode, "stepped": r.stepped,
+                        "steps": r.steps, "balanced": r.balanced, "com_margin_m": r.com_margin,
+                        "hand_position": r.position.tolist()}
     res["reach"] = reaches
     chain = Chain.to_site(figure, hand.start_joint, hand.segment, hand.site)
     ws = reachable_workspace(chain, opts.resolution)
@@ -127,7 +141,8 @@ def analyse_figure(wp: Workplace, figure: Figure, opts: Options, renderer: Offsc
     res["view"] = views
     # --- strength -----------------------------------------------------------------------------
     first = opts.reach[0] if opts.reach else None
-    figure.q = postures[first] if first else q_neutral
+    # the first reach's whole posture (after steps the figure stands elsewhere), kept on its own root
+    (postures[first] if first else neutral).apply(figure, root=neutral.root)
     loads = [Load.held_mass(figure, hand.segment, hand.site, opts.load_kg)] if opts.load_kg > 0 else []
     tau = joint_torques(figure, loads)
     try:
@@ -159,7 +174,7 @@ def analyse_figure(wp: Workplace, figure: Figure, opts: Options, renderer: Offsc
     if renderer is not None and pictures is not None:
         colours = torque_vertex_colours(figure, joint_utilisation(figure, util)) if util is not None else {}
         _pictures(renderer, wp, figure, colours, ws, ev, pictures, tag)
-    figure.q = q_neutral
+    neutral.apply(figure)
     return res
 
 
@@ -228,7 +243,7 @@ def write_report(wp: Workplace, opts: Options, out_dir: str | Path,
         renderer = None
     pictures: dict[str, bytes] = {}
     results = {"scene": str(wp.path) if wp.path else None, "load_kg": opts.load_kg, "hand": opts.hand,
-               "figures": []}
+               "reach_mode": opts.reach_mode, "figures": []}
     try:
         for k, (sex, pct) in enumerate(opts.figures):
             if progress is not None:
@@ -262,7 +277,11 @@ def _rows(results: dict[str, Any]) -> list[list[Any]]:
     for r in results["figures"]:
         f = f"{r['sex']}:{r['percentile']:g}"
         for ref, v in r["reach"].items():
-            rows.append([f, "reach", ref, "shortfall", round(v["shortfall_m"], 4), "m", v["text"]])
+            mode = v.get("mode", "arm")
+            rows.append([f, "reach", ref, "shortfall", round(v["shortfall_m"], 4), "m", v["text"], mode])
+            if mode != "arm":
+                rows.append([f, "reach", ref, "steps", v["steps"], "count",
+                             "balanced" if v["balanced"] else "not balanced", mode])
         for ref, v in r["workspace"]["sites"].items():
             rows.append([f, "workspace", ref, "distance", round(v["distance_m"], 4), "m",
                          "inside" if v["inside"] else "outside"])
@@ -284,29 +303,31 @@ def _rows(results: dict[str, Any]) -> list[list[Any]]:
 def _csv(results: dict[str, Any]) -> str:
     buf = io.StringIO()
     w = csv.writer(buf, lineterminator="\n")
-    w.writerow(["figure", "analysis", "target", "metric", "value", "unit", "note"])
-    w.writerows(_rows(results))
+    w.writerow(["figure", "analysis", "target", "metric", "value", "unit", "note", "reach_mode"])
+    w.writerows(row + [""] * (8 - len(row)) for row in _rows(results))
     return buf.getvalue()
 
 
 def _html(results: dict[str, Any], pictures: dict[str, bytes]) -> str:
     e = html.escape
     parts = ["<!doctype html><html><head><meta charset='utf-8'><title>jackpy workplace report</title>",
-             "<style>body{font-family:sans-serif;margin:2em}table{border-collapse:collapse;margin:1em 0}"
+             ("<style>body{font-family:sans-serif;margin:2em}table{border-collapse:collapse;margin:1em 0}"
              "td,th{border:1px solid #ccc;padding:3px 8px;text-align:left}img{margin:4px;border:1px solid #ccc}"
-             ".bad{color:#b00}.good{color:#070}</style></head><body>",
-             f"<h1>Workplace report</h1><p>Scene: {e(str(results['scene']))}; hand: {e(results['hand'])}; "
-             f"load in the hand: {results['load_kg']:g} kg.</p>"]
+             ".bad{color:#b00}.good{color:#070}</style></head><body>"),
+             (f"<h1>Workplace report</h1><p>Scene: {e(str(results['scene']))}; hand: {e(results['hand'])}; "
+             f"load in the hand: {results['load_kg']:g} kg; reach: "
+             f"{e(REACH_MODE_TEXT.get(results.get('reach_mode', 'arm'), ''))}.</p>")]
     for r in results["figures"]:
         t = r["tag"]
         parts.append(f"<h2>{e(r['sex'])}, {r['percentile']:g}th percentile (stature {r['stature_m'] * 100:.1f} cm)</h2>")
         parts.append("".join(f"<img src='{t}-{k}.png' alt='{k}' width='427'>" for k in ("overall", "eye", "reach")
                              if f"{t}-{k}.png" in pictures))
-        parts.append("<h3>Reach</h3><table><tr><th>target</th><th>result</th><th>in workspace</th></tr>")
+        parts.append("<h3>Reach</h3><table><tr><th>target</th><th>result</th><th>steps</th><th>in workspace</th></tr>")
         for ref, v in r["reach"].items():
             ws = r["workspace"]["sites"].get(ref, {})
             cls = "good" if v["reached"] else "bad"
-            parts.append(f"<tr><td>{e(ref)}</td><td class='{cls}'>{e(v['text'])}</td>"
+            steps = "–" if v.get("mode", "arm") != "step" else str(v["steps"])
+            parts.append(f"<tr><td>{e(ref)}</td><td class='{cls}'>{e(v['text'])}</td><td>{steps}</td>"
                          f"<td>{'inside' if ws.get('inside') else 'outside'}</td></tr>")
         parts.append(f"</table><p>Workspace volume of the {e(r['hand'])} hand: "
                      f"{r['workspace']['volume_m3']:.3f} m³ ({r['workspace']['resolution']}³ voxels).</p>")

@@ -15,6 +15,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--view", default=None, help="view targets object or object.site, comma separated (default: the scene's)")
     p.add_argument("--load", type=float, default=None, metavar="KG", help="load held in the hand, kg (default: the scene's)")
     p.add_argument("--hand", choices=("right", "left"), default=None, help="reaching hand (default: the scene's)")
+    p.add_argument("--reach-mode", choices=("arm", "body", "step"), default="arm",
+                   help="point reach with the arm only (default), the whole body with the feet planted "
+                        "(bends and shifts its weight, balanced), or the whole body allowed to step")
     p.add_argument("--resolution", type=int, default=48, help="workspace voxels per axis (default 48)")
     p.add_argument("--no-pictures", action="store_true", help="skip rendering (and visibility, which renders)")
     p.add_argument("-o", "--output", required=True, metavar="DIR", help="folder for the report")
@@ -32,7 +35,8 @@ def run(args: argparse.Namespace) -> int:
 
     wp = load_workplace(args.scene)
     opts = Options(parse_figures(args.figures), _list(args.reach, wp.plan.reach), _list(args.view, wp.plan.view),
-                   wp.plan.load_kg if args.load is None else args.load, args.hand or wp.plan.hand, args.resolution)
+                   wp.plan.load_kg if args.load is None else args.load, args.hand or wp.plan.hand, args.resolution,
+                   args.reach_mode)
     if opts.load_kg < 0 or opts.resolution < 4:
         raise JackpyError("--load must be >= 0 and --resolution >= 4")
     for ref in opts.reach + opts.view:
@@ -41,6 +45,8 @@ def run(args: argparse.Namespace) -> int:
     for r in results["figures"]:
         reached = sum(v["reached"] for v in r["reach"].values())
         seen = ", ".join(f"{k} {100 * v['visible_fraction']:.0f}%" for k, v in r["view"].items()) or "-"
-        print(f"{r['sex']} {r['percentile']:g}%: reach {reached}/{len(r['reach'])}, view {seen}")
+        steps = sum(v["steps"] for v in r["reach"].values())
+        stepped = f" ({steps} step{'s' if steps != 1 else ''})" if opts.reach_mode == "step" else ""
+        print(f"{r['sex']} {r['percentile']:g}%: reach {reached}/{len(r['reach'])}{stepped}, view {seen}")
     print(f"report: {args.output}/report.html")
     return 0
