@@ -5,6 +5,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from conftest import offscreen_renderer_or_skip
 
 from jackpy.analysis import Workspace, eye_view
 from jackpy.ui.analysis_overlays import (
@@ -26,12 +27,7 @@ EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "workplace" / "work
 
 @pytest.fixture(scope="module")
 def renderer():
-    from jackpy.ui.render import offscreen_renderer
-
-    try:
-        r = offscreen_renderer(W, H)
-    except Exception as exc:  # no EGL device
-        pytest.skip(f"no offscreen OpenGL context: {exc}")
+    r = offscreen_renderer_or_skip(W, H)
     yield r
     r.release()
 

@@ -2,6 +2,7 @@
 
 import numpy as np
 import pytest
+from conftest import offscreen_renderer_or_skip
 
 from jackpy.analysis import eye_view
 from jackpy.ui.eye_view import EYE_VIEW_SIZE, EyeViewport, hidden_segments
@@ -11,12 +12,7 @@ W, H = 240, 180
 
 @pytest.fixture(scope="module")
 def renderer():
-    from jackpy.ui.render import offscreen_renderer
-
-    try:
-        r = offscreen_renderer(W, H)
-    except Exception as exc:  # no EGL device
-        pytest.skip(f"no offscreen OpenGL context: {exc}")
+    r = offscreen_renderer_or_skip(W, H)
     yield r
     r.release()
 

@@ -3,12 +3,11 @@ point reach, visibility, the one-click report; and the panel drawn in a real win
 
 import json
 import os
-import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
+from conftest import in_child_process, offscreen_renderer_or_skip
 
 from jackpy.ui.panels import analysis as ap
 
@@ -18,14 +17,7 @@ EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "workplace" / "work
 
 @pytest.fixture(scope="module")
 def renderer():
-    if os.environ.get("JACKPY_WINDOW_CHILD"):
-        pytest.skip("offscreen tests do not run in the window child")
-    from jackpy.ui.render import offscreen_renderer
-
-    try:
-        r = offscreen_renderer(W, H)
-    except Exception as exc:  # no EGL device
-        pytest.skip(f"no offscreen OpenGL context: {exc}")
+    r = offscreen_renderer_or_skip(W, H)
     yield r
     r.release()
 
@@ -128,12 +120,7 @@ def test_analysis_panel_and_eye_view_in_a_window(request):
     """Every section open, a workspace job and the eye view, in a real window (own process: GLX)."""
     if not os.environ.get("DISPLAY"):
         pytest.skip("needs an X display (xvfb-run)")
-    if not os.environ.get("JACKPY_WINDOW_CHILD"):
-        env = dict(os.environ, JACKPY_WINDOW_CHILD="1")
-        done = subprocess.run([sys.executable, "-m", "pytest", "-o", "addopts=", "-q", "-p", "no:cacheprovider",
-                               request.node.nodeid], cwd=request.config.rootpath, env=env,
-                              capture_output=True, text=True, timeout=240)
-        assert done.returncode == 0 and " passed" in done.stdout, done.stdout[-4000:] + done.stderr[-2000:]
+    if in_child_process(request):
         return
     from jackpy.ui.app import App
     from jackpy.ui.window import Window

@@ -8,11 +8,10 @@ written beside the scene), reopen, same posture.
 """
 
 import os
-import subprocess
-import sys
 
 import numpy as np
 import pytest
+from conftest import in_child_process
 
 if not os.environ.get("DISPLAY"):
     pytest.skip("window tests need an X display (run under xvfb-run, see scripts/test.sh)",
@@ -24,20 +23,6 @@ from jackpy.ui.app import (MOD_CONTROL, MOUSE_LEFT, PRESS, RELEASE, App, effecto
 from jackpy.ui.window import Window  # noqa: E402
 
 
-def in_child_process(request) -> bool:
-    """Run this test in a fresh interpreter unless already there; True when the parent should stop.
-
-    A GLX window cannot be created in a process that has made an EGL context (Mesa answers
-    BadAccess), and offscreen tests in the same pytest run make EGL contexts.
-    """
-    if os.environ.get("JACKPY_WINDOW_CHILD"):
-        return False
-    env = dict(os.environ, JACKPY_WINDOW_CHILD="1")
-    done = subprocess.run([sys.executable, "-m", "pytest", "-o", "addopts=", "-q", "-p", "no:cacheprovider",
-                           request.node.nodeid],
-                          cwd=request.config.rootpath, env=env, capture_output=True, text=True, timeout=240)
-    assert done.returncode == 0 and " passed" in done.stdout, done.stdout[-4000:] + done.stderr[-2000:]
-    return True
 
 
 @pytest.fixture
