@@ -41,15 +41,23 @@ Q_OF_THETA = np.array([2, 1, 0, 3, 6, 5, 4])
 
 def _rot(axis: int, t: np.ndarray) -> np.ndarray:
     """Batched rotation matrices (..., 3, 3) about x (0), y (1) or z (2)."""
+    t = np.asarray(t, dtype=float)
     c, s = np.cos(t), np.sin(t)
-    o, z = np.ones_like(t), np.zeros_like(t)
-    if axis == 0:
-        m = [o, z, z, z, c, -s, z, s, c]
-    elif axis == 1:
-        m = [c, z, s, z, o, z, -s, z, c]
-    else:
-        m = [c, -s, z, s, c, z, z, z, o]
-    return np.stack(m, axis=-1).reshape(np.shape(t) + (3, 3))
+    i, j = ((1, 2), (2, 0), (0, 1))[axis]
+    m = np.zeros(t.shape + (3, 3))
+    m[..., axis, axis] = 1.0
+    m[..., i, i] = c
+    m[..., j, j] = c
+    m[..., i, j] = -s
+    m[..., j, i] = s
+    return m
+
+
+def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Cross product over the last axis (numpy's ``cross`` costs more than the arithmetic here)."""
+    a0, a1, a2 = a[..., 0], a[..., 1], a[..., 2]
+    b0, b1, b2 = b[..., 0], b[..., 1], b[..., 2]
+    return np.stack([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0], axis=-1)
 
 
 @dataclass
@@ -75,10 +83,10 @@ class Arm7:
         return out
 
     def _reference(self, n: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-        ref = X if np.linalg.norm(np.cross(n, X)) > 1e-6 else Y
+        ref = X if np.linalg.norm(_cross(n, X)) > 1e-6 else Y
         u = ref - (ref @ n) * n
         u /= np.linalg.norm(u)
-        return u, np.cross(n, u)
+        return u, _cross(n, u)
 
     def swivel(self, theta: np.ndarray) -> float:
         """Swivel angle (radians) of the posture ``theta``."""
@@ -109,7 +117,7 @@ class Arm7:
         n = p / dist
         u, v = self._reference(n)
         b2 = np.cos(phi)[:, None] * u + np.sin(phi)[:, None] * v  # elbow direction off the axis (K,3)
-        B = np.stack([np.broadcast_to(n, b2.shape), b2, np.cross(n, b2)], axis=-1)  # world triads (K,3,3)
+        B = np.stack([np.broadcast_to(n, b2.shape), b2, _cross(n, b2)], axis=-1)  # world triads (K,3,3)
         e_loc = np.array([-self.a3, 0.0, self.d3])
         sols = []
         for t4 in {base + np.arctan2(np.sqrt(disc), k), base - np.arctan2(np.sqrt(disc), k)}:
@@ -117,9 +125,9 @@ class Arm7:
             a1 = w_loc / np.linalg.norm(w_loc)
             a2 = e_loc - (e_loc @ a1) * a1
             if np.linalg.norm(a2) < 1e-12:
-                a2 = np.cross(a1, Y if abs(a1[1]) < 0.9 else X)
+                a2 = _cross(a1, Y if abs(a1[1]) < 0.9 else X)
             a2 /= np.linalg.norm(a2)
-            A = np.stack([a1, a2, np.cross(a1, a2)], axis=-1)
+            A = np.stack([a1, a2, _cross(a1, a2)], axis=-1)
             Rs = B @ A.T  # (K,3,3)
             for t1, t2, t3 in _zxz(Rs):
                 Rw = np.swapaxes(_rot(2, t1) @ _rot(0, t2) @ _rot(2, t3) @ _rot(1, np.full_like(t1, t4)), -1, -2) @ R
