@@ -36,7 +36,12 @@ class Window:
 
     def __init__(self, app: App, title: str = "jackpy", size: tuple[int, int] = (1280, 800),
                  visible: bool = True) -> None:
-        if not glfw.init():
+        reporting, glfw.ERROR_REPORTING = glfw.ERROR_REPORTING, "ignore"  # our own one-line error instead
+        try:
+            ok = glfw.init()
+        finally:
+            glfw.ERROR_REPORTING = reporting
+        if not ok:
             raise WindowError("cannot initialise glfw (is there a display? set DISPLAY or use xvfb-run)")
         glfw.window_hint(glfw.CONTEXT_VERSION_MAJOR, 3)
         glfw.window_hint(glfw.CONTEXT_VERSION_MINOR, 3)
