@@ -201,7 +201,9 @@ class OffscreenRenderer:
             self.ctx.enable(moderngl.BLEND)
             self.ctx.blend_func = moderngl.SRC_ALPHA, moderngl.ONE_MINUS_SRC_ALPHA
             self.ctx.depth_mask = False
+            self.ctx.enable(moderngl.CULL_FACE)  # front faces only: unsorted back faces would speckle
             self._draw(self._shaded, list(translucent), vp, per_body)
+            self.ctx.disable(moderngl.CULL_FACE)
             self.ctx.depth_mask = True
             self.ctx.disable(moderngl.BLEND)
         w, h = self.size
