@@ -15,8 +15,12 @@ def create_egl_context() -> moderngl.Context:
     return moderngl.create_standalone_context(require=330, backend="egl")
 
 
-def offscreen_renderer(width: int, height: int, samples: int = 4,
+def offscreen_renderer(width: int, height: int, samples: int | None = 4,
                        ctx: moderngl.Context | None = None) -> Renderer:
-    """A :class:`Renderer` of ``width`` x ``height`` pixels on a new (or the given) EGL context."""
+    """A :class:`Renderer` of ``width`` x ``height`` pixels on a new (or the given) EGL context.
+
+    Pictures (screenshots, reports) default to 4x MSAA whatever the rasteriser; ``samples=None``
+    chooses as the window does (:func:`~jackpy.ui.render.renderer.default_samples`).
+    """
     return Renderer(ctx if ctx is not None else create_egl_context(), (width, height), samples)
 

@@ -9,10 +9,18 @@ Passes, in order: opaque instances (polygon offset, so edge overlays win the dep
 wireframe overlays, depth-tested lines, the fading floor grid, transparent items back to front
 (back faces first, depth writes off), then on-top lines. Picking draws the same opaque geometry
 (and the pickable transparent items) into a 32-bit integer attachment, for one pixel only.
+
+Cost control (see "Rendering" in docs/architecture.md): a frame whose inputs (instance records,
+lines, grid, camera, meshes, size) equal the last frame's is not drawn again; instance data is
+re-uploaded only where it changed; passes with nothing to draw are skipped. The MSAA sample count
+is a setting: 4x on a hardware GPU, none on a software rasteriser (llvmpipe, softpipe), where
+multisampling costs several times the whole frame; there a frame that stays unchanged for
+``refine_after_s`` is drawn once more at ``still_samples`` (4x), so a still image is anti-aliased.
 """
 
 from __future__ import annotations
 
+import time
 from pathlib import Path
 
 import moderngl
@@ -40,6 +48,23 @@ KEY_LIGHT_DIRECTION = np.array([-0.45, 0.8, 0.55]) / np.linalg.norm([-0.45, 0.8,
 
 HIGHLIGHT_COLOR = (1.0, 0.72, 0.15)
 
+SOFTWARE_RENDERERS = ("llvmpipe", "softpipe", "swrast", "software rasterizer", "swiftshader")
+"""Substrings of ``GL_RENDERER`` (lower case) that mean a CPU rasteriser."""
+
+HARDWARE_SAMPLES = 4
+"""Default MSAA samples on a GPU, and of the refined still frame on a software rasteriser."""
+
+
+def is_software_gl(ctx: moderngl.Context) -> bool:
+    """Whether ``ctx`` rasterises on the CPU (Mesa llvmpipe or softpipe, SwiftShader)."""
+    name = str(ctx.info.get("GL_RENDERER", "")).lower()
+    return any(s in name for s in SOFTWARE_RENDERERS)
+
+
+def default_samples(ctx: moderngl.Context) -> int:
+    """MSAA samples for interactive frames: 4 on a GPU, 0 on a software rasteriser."""
+    return 0 if is_software_gl(ctx) else min(HARDWARE_SAMPLES, ctx.max_samples)
+
 
 def _mat(m: np.ndarray) -> bytes:
     """A 4x4 matrix as column-major float32 bytes, as GLSL reads it."""
@@ -58,19 +83,28 @@ class _GpuMesh:
         self.center = 0.5 * (lo + hi)
         self.capacity = 0
         self.instances: moderngl.Buffer | None = None
+        self.uploaded = b""
         self.vaos: dict[int, moderngl.VertexArray] = {}
 
     def draw(self, program: moderngl.Program, records: np.ndarray) -> None:
-        """Draw ``records`` instances of this mesh with ``program``."""
+        """Draw ``records`` instances of this mesh with ``program``.
+
+        The instance buffer grows by doubling and is written only when the records differ from
+        what it holds (still things, and a mesh drawn in several passes, upload nothing).
+        """
         n = len(records)
         if n == 0 or self.index_count == 0:
             return
         if n > self.capacity:
             self._release_instances()
-            self.capacity = max(n, 2 * self.capacity, 16)
+            self.capacity = max(n, 2 * self.capacity, 4)
             self.instances = self.ctx.buffer(reserve=self.capacity * INSTANCE_DTYPE.itemsize, dynamic=True)
+            self.uploaded = b""
         assert self.instances is not None
-        self.instances.write(records.tobytes())
+        data = records.tobytes()
+        if data != self.uploaded:
+            self.instances.write(data)
+            self.uploaded = data
         vao = self.vaos.get(program.glo)
         if vao is None:
             vao = self.ctx.vertex_array(
@@ -96,11 +130,23 @@ class _GpuMesh:
 
 
 class Renderer:
-    """Renders scenes at ``size`` = (width, height) pixels with ``samples``-fold MSAA."""
+    """Renders scenes at ``size`` = (width, height) pixels.
 
-    def __init__(self, ctx: moderngl.Context, size: tuple[int, int], samples: int = 4) -> None:
+    ``samples`` is the MSAA sample count of ordinary frames; ``None`` picks
+    :func:`default_samples` (4 on a GPU, 0 on a software rasteriser). ``still_samples`` is the
+    count a frame is redrawn at once it has stayed unchanged for ``refine_after_s`` seconds; by
+    default 4 when ``samples`` was chosen automatically, else ``samples`` (no refinement).
+    """
+
+    def __init__(self, ctx: moderngl.Context, size: tuple[int, int], samples: int | None = None,
+                 still_samples: int | None = None) -> None:
         self.ctx = ctx
-        self.samples = max(0, min(samples, ctx.max_samples))
+        self.software = is_software_gl(ctx)
+        self.samples = default_samples(ctx) if samples is None else max(0, min(samples, ctx.max_samples))
+        if still_samples is None:
+            still_samples = HARDWARE_SAMPLES if samples is None else self.samples
+        self.still_samples = max(self.samples, min(still_samples, ctx.max_samples))
+        self.refine_after_s = 0.3
         self._mesh_program = ctx.program(vertex_shader=shaders.MESH_VERTEX,
                                          fragment_shader=shaders.MESH_FRAGMENT)
         self._pick_program = ctx.program(vertex_shader=shaders.MESH_VERTEX,
@@ -117,28 +163,52 @@ class Renderer:
         self._line_vbo: moderngl.Buffer | None = None
         self._line_vao: moderngl.VertexArray | None = None
         self._meshes: dict[str, _GpuMesh] = {}
+        self._mesh_version = 0
         for key, mesh in BUILTIN_MESHES.items():
             self.add_mesh(key, mesh)
         self._framebuffers: list[moderngl.Framebuffer | moderngl.Renderbuffer | moderngl.Texture] = []
+        self._msaa: dict[int, tuple[moderngl.Framebuffer, list]] = {}
         self._allocate(size)
         self._last: tuple[FrameBatches, list[InstanceBatch], np.ndarray, np.ndarray] | None = None
+        self._last_scene: Scene | None = None
+        self._frame_key: bytes | None = None
+        self._key_since = 0.0
+        self.drawn_samples = -1
+        """MSAA samples of the image in :attr:`color_texture` (-1: nothing drawn yet)."""
+        self.frames_drawn = 0
+        """Frames actually drawn (a :meth:`render` of an unchanged frame draws nothing)."""
 
     # ------------------------------------------------------------------ resources
     def _allocate(self, size: tuple[int, int]) -> None:
         for obj in self._framebuffers:
             obj.release()
+        for fbo, objs in self._msaa.values():
+            for obj in objs:
+                obj.release()
+        self._msaa = {}
         ctx, self.size = self.ctx, (int(size[0]), int(size[1]))
-        color_rb = ctx.renderbuffer(self.size, 4, samples=self.samples)
-        depth_rb = ctx.depth_renderbuffer(self.size, samples=self.samples)
-        self._msaa_fbo = ctx.framebuffer([color_rb], depth_rb)
         self.color_texture = ctx.texture(self.size, 4)
-        self._resolve_fbo = ctx.framebuffer([self.color_texture])
+        depth = ctx.depth_renderbuffer(self.size)
+        self._resolve_fbo = ctx.framebuffer([self.color_texture], depth)
         pick_tex = ctx.texture(self.size, 1, dtype="i4")
         pick_tex.filter = (moderngl.NEAREST, moderngl.NEAREST)
         pick_depth = ctx.depth_renderbuffer(self.size)
         self._pick_fbo = ctx.framebuffer([pick_tex], pick_depth)
-        self._framebuffers = [self._msaa_fbo, self._resolve_fbo, self._pick_fbo, color_rb, depth_rb,
-                              self.color_texture, pick_tex, pick_depth]
+        self._framebuffers = [self._resolve_fbo, self._pick_fbo, self.color_texture, depth, pick_tex, pick_depth]
+        self._frame_key = None
+        self.drawn_samples = -1
+
+    def _target(self, samples: int) -> moderngl.Framebuffer:
+        """The framebuffer a frame with ``samples`` is drawn into: the resolve target itself when
+        not multisampled, else a multisampled one made on first use."""
+        if samples == 0:
+            return self._resolve_fbo
+        if samples not in self._msaa:
+            color = self.ctx.renderbuffer(self.size, 4, samples=samples)
+            depth = self.ctx.depth_renderbuffer(self.size, samples=samples)
+            fbo = self.ctx.framebuffer([color], depth)
+            self._msaa[samples] = (fbo, [fbo, color, depth])
+        return self._msaa[samples][0]
 
     def resize(self, width: int, height: int) -> None:
         """Reallocate the framebuffers for a new viewport size in pixels."""
@@ -158,6 +228,7 @@ class Renderer:
                 return
             self._meshes.pop(key).release()
         self._meshes[key] = _GpuMesh(self.ctx, mesh)
+        self._mesh_version += 1
 
     def has_mesh(self, key: str) -> bool:
         """Whether a mesh is cached under ``key``."""
@@ -166,6 +237,7 @@ class Renderer:
     def remove_mesh(self, key: str) -> None:
         """Free the GPU buffers of a cached mesh."""
         self._meshes.pop(key).release()
+        self._mesh_version += 1
 
     def release(self) -> None:
         """Free every GPU resource of this renderer."""
@@ -174,21 +246,60 @@ class Renderer:
         self._meshes.clear()
         for obj in self._framebuffers:
             obj.release()
+        for _, objs in self._msaa.values():
+            for obj in objs:
+                obj.release()
+        self._msaa = {}
         for obj in (self._line_vao, self._line_vbo, self._grid_vao, self._grid_vbo, self._mesh_program,
                     self._pick_program, self._line_program, self._grid_program):
             if obj is not None:
                 obj.release()
 
     # ------------------------------------------------------------------ drawing
-    def render(self, scene: Scene, view: np.ndarray, projection: np.ndarray) -> None:
-        """Draw ``scene`` seen through 4x4 ``view`` (world to camera) and ``projection``."""
+    @property
+    def refine_pending(self) -> bool:
+        """Whether the image on show was drawn with fewer samples than a still frame gets: a later
+        :meth:`render` (or :meth:`refine`) of the same frame will draw it again, anti-aliased."""
+        return 0 <= self.drawn_samples < self.still_samples
+
+    def render(self, scene: Scene, view: np.ndarray, projection: np.ndarray) -> bool:
+        """Draw ``scene`` seen through 4x4 ``view`` (world to camera) and ``projection``.
+
+        Returns whether anything was drawn: a frame equal to the last one is kept as it is,
+        unless it has now been still for :attr:`refine_after_s` and is redrawn at
+        :attr:`still_samples`.
+        """
         unknown = {i.mesh for i in scene.items} - self._meshes.keys()
         if unknown:
             raise KeyError(f"meshes not uploaded: {sorted(unknown)}")
-        ctx, fbo = self.ctx, self._msaa_fbo
         batches = build_batches(scene)
+        key = _frame_key(scene, batches, view, projection, self._mesh_version)
+        now = time.monotonic()
+        if key != self._frame_key:
+            self._frame_key, self._key_since = key, now
+            samples = self.samples
+        elif self.refine_pending and now - self._key_since >= self.refine_after_s:
+            samples = self.still_samples
+        else:
+            return False
+        self._draw_frame(scene, batches, view, projection, samples)
+        return True
+
+    def refine(self) -> bool:
+        """Redraw the last frame at :attr:`still_samples` now if it was drawn with fewer."""
+        if self._last is None or self._last_scene is None or not self.refine_pending:
+            return False
+        batches, _, view, projection = self._last
+        self._draw_frame(self._last_scene, batches, view, projection, self.still_samples)
+        return True
+
+    def _draw_frame(self, scene: Scene, batches: FrameBatches, view: np.ndarray, projection: np.ndarray,
+                    samples: int) -> None:
+        ctx, fbo = self.ctx, self._target(samples)
         centers = {k: m.center for k, m in self._meshes.items()}
         transparent = item_batches(back_to_front(batches.transparent, view, centers))
+        lines = [ln for ln in scene.lines if not ln.on_top] + [ln for ln in scene.lines if ln.on_top]
+        n_under, n_top = self._upload_lines(lines)
 
         fbo.use()
         fbo.depth_mask = True
@@ -204,7 +315,10 @@ class Renderer:
         ctx.polygon_offset = (0.0, 0.0)
         ctx.depth_func = "<="
         self._draw_wireframe(batches.wireframe)
-        self._draw_lines([ln for ln in scene.lines if not ln.on_top], view, projection)
+        if n_under or n_top:
+            self._line_program["u_view"].write(_mat(view))
+            self._line_program["u_proj"].write(_mat(projection))
+        self._draw_lines(0, n_under)
 
         ctx.enable(moderngl.BLEND)
         ctx.blend_func = (moderngl.SRC_ALPHA, moderngl.ONE_MINUS_SRC_ALPHA,
@@ -212,23 +326,28 @@ class Renderer:
         fbo.depth_mask = False
         if scene.grid is not None:
             self._draw_grid(scene.grid, view, projection)
-        ctx.enable(moderngl.CULL_FACE)
-        for batch in transparent:
-            for face in ("front", "back"):  # cull front faces first: back faces are drawn first
-                ctx.cull_face = face
-                self._draw(prog, [batch])
-            if batch.wireframe:
-                ctx.disable(moderngl.CULL_FACE)
-                self._draw_wireframe([batch])
-                ctx.enable(moderngl.CULL_FACE)
+        if transparent:
+            ctx.enable(moderngl.CULL_FACE)
+            for batch in transparent:
+                for face in ("front", "back"):  # cull front faces first: back faces are drawn first
+                    ctx.cull_face = face
+                    self._draw(prog, [batch])
+                if batch.wireframe:
+                    ctx.disable(moderngl.CULL_FACE)
+                    self._draw_wireframe([batch])
+                    ctx.enable(moderngl.CULL_FACE)
         ctx.disable(moderngl.CULL_FACE | moderngl.DEPTH_TEST)
-        self._draw_lines([ln for ln in scene.lines if ln.on_top], view, projection)
+        self._draw_lines(n_under, n_top)
         fbo.depth_mask = True
         ctx.disable(moderngl.BLEND)
 
-        ctx.copy_framebuffer(self._resolve_fbo, fbo)
+        if fbo is not self._resolve_fbo:
+            ctx.copy_framebuffer(self._resolve_fbo, fbo)
         pickable = [i for i in batches.transparent if i.pick_id is not None]
         self._last = (batches, item_batches(pickable), np.array(view), np.array(projection))
+        self._last_scene = scene
+        self.drawn_samples = samples
+        self.frames_drawn += 1
 
     def _set_mesh_uniforms(self, view: np.ndarray, projection: np.ndarray) -> None:
         rotation = np.asarray(view, float)[:3, :3]
@@ -254,17 +373,20 @@ class Renderer:
         self.ctx.wireframe = False
         self._mesh_program["u_flat"].value = False
 
-    def _draw_lines(self, lines: list[Lines], view: np.ndarray, projection: np.ndarray) -> None:
+    def _upload_lines(self, lines: list[Lines]) -> tuple[int, int]:
+        """Write every line vertex of the frame into one buffer (depth-tested ones first); returns
+        the vertex counts (depth-tested, on top)."""
         if not lines:
-            return
+            return 0, 0
         parts = []
         for ln in lines:
             seg = np.asarray(ln.segments, np.float32).reshape(-1, 2, 3)
             color = np.repeat(rgba(ln.color, len(seg)), 2, axis=0)
             parts.append(np.hstack([seg.reshape(-1, 3), color]))
         data = np.ascontiguousarray(np.concatenate(parts), np.float32)
+        n_top = sum(2 * len(np.asarray(ln.segments).reshape(-1, 2, 3)) for ln in lines if ln.on_top)
         if len(data) == 0:
-            return
+            return 0, 0
         if data.nbytes > self._line_capacity:
             if self._line_vao is not None and self._line_vbo is not None:
                 self._line_vao.release()
@@ -273,11 +395,13 @@ class Renderer:
             self._line_vbo = self.ctx.buffer(reserve=self._line_capacity, dynamic=True)
             self._line_vao = self.ctx.vertex_array(
                 self._line_program, [(self._line_vbo, "3f 4f", "in_position", "in_color")])
-        assert self._line_vbo is not None and self._line_vao is not None
+        assert self._line_vbo is not None
         self._line_vbo.write(data.tobytes())
-        self._line_program["u_view"].write(_mat(view))
-        self._line_program["u_proj"].write(_mat(projection))
-        self._line_vao.render(moderngl.LINES, vertices=len(data))
+        return len(data) - n_top, n_top
+
+    def _draw_lines(self, first: int, count: int) -> None:
+        if count and self._line_vao is not None:
+            self._line_vao.render(moderngl.LINES, vertices=count, first=first)
 
     def _draw_grid(self, grid: Grid, view: np.ndarray, projection: np.ndarray) -> None:
         eye = np.linalg.inv(view)[:3, 3]
@@ -297,7 +421,7 @@ class Renderer:
     def read_pixels(self) -> np.ndarray:
         """The last rendered image, (height, width, 4) uint8 RGBA, first row at the top."""
         w, h = self.size
-        data = self._resolve_fbo.read(components=4, alignment=1)
+        data = self._resolve_fbo.read(components=4, alignment=1)  # the colour attachment
         return np.frombuffer(data, np.uint8).reshape(h, w, 4)[::-1].copy()
 
     def blit(self, destination: moderngl.Framebuffer) -> None:
@@ -333,3 +457,21 @@ class Renderer:
         fbo.scissor = None
         pick_id = int(value[0])
         return pick_id if pick_id != 0 else None
+
+
+def _frame_key(scene: Scene, batches: FrameBatches, view: np.ndarray, projection: np.ndarray,
+               mesh_version: int) -> bytes:
+    """Bytes that change whenever the drawn image could: every instance record, transparent
+    item, line, the grid, background, camera and the cached meshes."""
+    parts = [np.asarray(view, np.float64).tobytes(), np.asarray(projection, np.float64).tobytes(),
+             repr((mesh_version, scene.grid, tuple(scene.background))).encode()]
+    for group in (batches.opaque, batches.wireframe):
+        for b in group:
+            parts += [b"%s:%d" % (b.mesh.encode(), len(b.records)), b.records.tobytes()]
+    for item in batches.transparent:
+        parts += [repr((item.mesh, tuple(item.color), item.pick_id, item.wireframe, item.highlighted)).encode(),
+                  np.asarray(item.transform, np.float64).tobytes()]
+    for ln in scene.lines:
+        parts += [b"L%d" % ln.on_top, np.asarray(ln.segments, np.float64).tobytes(),
+                  np.asarray(ln.color, np.float64).tobytes()]
+    return b"|".join(parts)
