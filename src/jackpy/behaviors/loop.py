@@ -14,6 +14,15 @@ One :meth:`BehaviorLoop.step` is one iteration of Jack's control loop with time 
    repeat (at most ``max_passes``; the book seldom needs more than two);
 4. every enabled behavior's ``finish`` runs (attached objects follow hands, steps advance).
 
+**User goals** (:meth:`BehaviorLoop.add_user_goal`): constraints the user adds on any site (an
+elbow kept out of a box, a head aim, a site on a plane) join the passes every frame, below the
+planted feet: a goal whose chain reaches into an arm or the neck and eyes is solved by those
+joints in the limbs pass (at its own level, beside the hands and the gaze); a goal moved only by
+legs, pelvis and spine joints goes to the body pass at ``feet level + 1 + level`` (level 0 shares
+the balance, pelvis and torso level and trades with them by weight). They are kept objects, so
+their compiled problems are reused across frames; only adding, removing, enabling or disabling
+one, or changing its level, recompiles.
+
 The loop knows nothing of windows; it reports what it did in a :class:`FrameReport`.
 """
 
@@ -64,6 +73,25 @@ def _goal_key(goal: Goal) -> tuple | None:
     if chain is not None and not isinstance(chain, str):
         chain = tuple(chain)
     return type(goal), goal.name, getattr(goal, "site_name", None), chain
+
+
+#: the parts a user goal can be solved in: the body pass, or the limbs pass's head or an arm
+USER_PARTS = ("body", "head", *SIDES)
+
+_KEEP = object()
+
+
+@dataclass
+class UserGoal:
+    """A goal the user added (:meth:`BehaviorLoop.add_user_goal`): ``level`` is its priority among
+    user goals (0 highest; always below the planted feet), ``part`` the pass that solves it
+    (``"body"``, ``"head"``, ``"left"``, ``"right"``), ``key`` an optional name to find it by."""
+
+    goal: Goal
+    level: int = 0
+    enabled: bool = True
+    part: str = "body"
+    key: str | None = None
 
 
 @dataclass
@@ -204,6 +232,8 @@ class BehaviorLoop:
         self._balance_cache: tuple | None = None
         self._footprints = self._footprint_locals()
         self._locked = self._pass_locks()
+        #: goals the user added, solved with the behaviors' (see :meth:`add_user_goal`)
+        self.user_goals: list[UserGoal] = []
         self.reset_state()
 
     # ----- set-up ---------------------------------------------------------------------------------
@@ -328,6 +358,80 @@ class BehaviorLoop:
                 return b
         raise KeyError(f"no behavior named {name!r}")
 
+    # ----- user goals ---------------------------------------------------------------------------------
+    def add_user_goal(self, goal: Goal, level: int = 0, chain: object = _KEEP, *, enabled: bool = True,
+                      key: str | None = None, part: str | None = None) -> UserGoal:
+        """Solve ``goal`` with the behaviors every frame, below the planted feet.
+
+        ``level``: priority among user goals (0 highest). ``chain`` (when given) replaces the goal's
+        chain (None: from the root, a joint name, or a list of joints). ``part`` forces the pass
+        (``"body"``, ``"head"``, ``"left"``, ``"right"``); by default a chain that reaches an arm or
+        the neck/eyes is solved by that limb, anything else in the body pass. Raises
+        :class:`~jackpy.errors.FigureError` for a site or chain the figure lacks.
+        """
+        if chain is not _KEEP:
+            goal.chain = chain  # type: ignore[attr-defined]
+        if part is None:
+            part = self._part_of(goal)
+        elif part not in USER_PARTS:
+            raise ValueError(f"part must be one of {USER_PARTS}, not {part!r}")
+        if int(level) < 0:
+            raise ValueError(f"level must be >= 0, not {level}")
+        entry = UserGoal(goal, int(level), bool(enabled), part, key)
+        self.user_goals.append(entry)
+        return entry
+
+    def user_goal(self, which: "UserGoal | Goal | str") -> UserGoal:
+        """The user goal given by itself, its goal or its key (KeyError if none)."""
+        for u in self.user_goals:
+            if u is which or u.goal is which or (isinstance(which, str) and u.key == which):
+                return u
+        raise KeyError(f"no user goal {which!r}")
+
+    def remove_user_goal(self, which: "UserGoal | Goal | str") -> None:
+        """Stop solving a user goal (given by itself, its goal or its key)."""
+        self.user_goals.remove(self.user_goal(which))
+
+    def set_user_goal(self, which: "UserGoal | Goal | str", *, enabled: bool | None = None,
+                      weight: float | None = None, level: int | None = None) -> UserGoal:
+        """Enable or disable a user goal, or change its weight (no recompile) or level."""
+        u = self.user_goal(which)
+        if enabled is not None:
+            u.enabled = bool(enabled)
+        if weight is not None:
+            if not weight >= 0.0:
+                raise ValueError(f"weight must be >= 0, not {weight}")
+            u.goal.weight = float(weight)
+        if level is not None:
+            if int(level) < 0:
+                raise ValueError(f"level must be >= 0, not {level}")
+            u.level = int(level)
+        return u
+
+    def _part_of(self, goal: Goal) -> str:
+        """The pass a goal belongs in by the joints its chain moves: the neck and eyes → ``"head"``,
+        an arm → that side, otherwise (legs, pelvis, spine only) ``"body"``."""
+        goal.bind(self.figure)
+        kin = self.figure.kinematics()
+        mask = goal.chain_mask()
+        joints = {kin.joint_names[j] for j in np.unique(kin.dof_joint[mask])} if mask.size else set()
+        a = self.anatomy
+        spine = set(a.spine_joints)
+        if joints & ((set(a.neck_joints) | set(a.eye_joints.values())) - spine):
+            return "head"
+        for side, h in a.hands.items():
+            if joints & set(h.arm_joints):
+                return side
+        return "body"
+
+    def _user_entries(self, part: str) -> list[tuple[Goal, int]]:
+        """(goal, level) of the enabled user goals of ``part`` (body levels below the feet)."""
+        base = 0
+        if part == "body":
+            feet = next((b for b in self.behaviors if b.name == "feet"), None)
+            base = int(getattr(getattr(feet, "params", None), "level", 0)) + 1
+        return [(u.goal, base + u.level) for u in self.user_goals if u.enabled and u.part == part]
+
     # ----- one frame -------------------------------------------------------------------------------
     def step(self) -> FrameReport:
         """Run one frame: behaviors, then the passes inside the COM loop, then the finishes."""
@@ -347,25 +451,35 @@ class BehaviorLoop:
         body = list(frame.body)
         if frame.com_goal is not None:
             body.append((CentreOfMass(frame.com_goal, weight=frame.com_weight, name="balance"), frame.com_level))
+        user = {p: self._user_entries(p) for p in USER_PARTS} if self.user_goals else {}
+        n_body = len(body)
+        body += user.get("body", [])
         body_pass = "body" if frame.spine_free else "legs"
+        limb_goals = {"head": frame.head + user.get("head", []),
+                      **{s: frame.arms[s] + user.get(s, []) for s in SIDES}}
+        n_own = {"head": len(frame.head), **{s: len(frame.arms[s]) for s in SIDES}}
         if self.combine_limbs:
             # head and arms move disjoint joints after the body: one solve, one forward pass per
             # evaluation for all three (their goals do not interact)
-            parts = {"head": frame.head, **{s: frame.arms[s] for s in SIDES}}
-            limbs = [(g, lv) for goals in parts.values() for g, lv in goals]
-            owner = [k for k, goals in parts.items() for _ in goals]
+            limbs = [(g, lv) for goals in limb_goals.values() for g, lv in goals]
+            owner = [k if i < n_own[k] else "user" for k, goals in limb_goals.items() for i in range(len(goals))]
         passes = 0
         for passes in range(1, self.max_passes + 1):
-            errors["body"] = self._pass(body, body_pass)
+            per_body = self._solve_pass(body, body_pass)
+            errors["body"] = _worst(per_body[:n_body])
+            user_errs = per_body[n_body:]
             if self.combine_limbs:
                 per_goal = self._solve_pass(limbs, "limbs")
-                for k in parts:
-                    mine = [e for e, o in zip(per_goal, owner) if o == k]
-                    errors[k] = (max((e[0] for e in mine), default=0.0), max((e[1] for e in mine), default=0.0))
+                for k in limb_goals:
+                    errors[k] = _worst([e for e, o in zip(per_goal, owner) if o == k])
+                user_errs += [e for e, o in zip(per_goal, owner) if o == "user"]
             else:
-                errors["head"] = self._pass(frame.head, "head")
-                for side in SIDES:
-                    errors[side] = self._pass(frame.arms[side], side)
+                for k in limb_goals:
+                    per = self._solve_pass(limb_goals[k], k)
+                    errors[k] = _worst(per[:n_own[k]])
+                    user_errs += per[n_own[k]:]
+            if user.get("body") or any(user.get(k) for k in limb_goals):
+                errors["user"] = _worst(user_errs)
             if frame.com_goal is None:
                 break
             c = self.posture()[1]
@@ -378,9 +492,11 @@ class BehaviorLoop:
 
     def _reuse(self, which: str, goal: Goal) -> Goal:
         """The cached goal of pass ``which`` with ``goal``'s identity, its targets updated from
-        ``goal``; or ``goal`` itself (cached for next frame) when there is none."""
+        ``goal``; or ``goal`` itself (cached for next frame) when there is none. User goals are
+        kept objects already and are never cached (a name they share with a behavior's goal must
+        not swap targets)."""
         key = _goal_key(goal)
-        if key is None:
+        if key is None or any(u.goal is goal for u in self.user_goals):
             return goal
         cache = self._goal_cache.setdefault(which, {})
         old = cache.get(key)
@@ -453,8 +569,13 @@ class BehaviorLoop:
 
     def _pass(self, goals: list[tuple[Goal, int]], which: str) -> tuple[float, float]:
         """Solve one pass; returns the worst residual (m, deg)."""
-        errs = self._solve_pass(goals, which)
-        return max((e[0] for e in errs), default=0.0), max((e[1] for e in errs), default=0.0)
+        return _worst(self._solve_pass(goals, which))
 
 
-__all__ = ["BehaviorBase", "BehaviorLoop", "Frame", "FrameReport", "PassSettings", "default_pass_settings"]
+def _worst(errs: list[tuple[float, float]]) -> tuple[float, float]:
+    """The largest residual (m, deg) of a list of goal residuals; (0, 0) for none."""
+    return max((e[0] for e in errs), default=0.0), max((e[1] for e in errs), default=0.0)
+
+
+__all__ = ["BehaviorBase", "BehaviorLoop", "Frame", "FrameReport", "PassSettings", "USER_PARTS", "UserGoal",
+           "default_pass_settings"]
