@@ -121,25 +121,30 @@ uniform vec4 u_major_color;
 in vec2 v_xz;
 out vec4 f_color;
 
-// Coverage (0..1) of grid lines about one pixel wide, for a coordinate in cell units.
-float lines(vec2 cells) {
-    vec2 width = fwidth(cells);
+// Coverage (0..1) of grid lines about one pixel wide, for a coordinate in cell units whose
+// screen-space derivative width is ``width`` (cells per pixel).
+float lines(vec2 cells, vec2 width) {
     vec2 d = abs(fract(cells - 0.5) - 0.5) / max(width, vec2(1e-6));
     // lines denser than a few pixels fade out instead of aliasing
     return (1.0 - min(min(d.x, d.y), 1.0)) * (1.0 - smoothstep(0.2, 0.5, max(width.x, width.y)));
 }
 
 void main() {
-    float minor = lines(v_xz / u_spacing);
-    float major = lines(v_xz / (u_spacing * u_major_every));
-    vec2 axis_d = abs(v_xz) / max(fwidth(v_xz), vec2(1e-6));
+    // one derivative for everything: the cell coordinates are linear in v_xz
+    vec2 w = fwidth(v_xz);
+    float fade = 1.0 - smoothstep(0.35 * u_fade_distance, u_fade_distance, distance(v_xz, u_center));
+    if (fade < 0.002) discard;
+    float minor = lines(v_xz / u_spacing, w / u_spacing);
+    float major_cell = u_spacing * u_major_every;
+    float major = lines(v_xz / major_cell, w / major_cell);
+    vec2 axis_d = abs(v_xz) / max(w, vec2(1e-6));
     float x_axis = 1.0 - min(axis_d.y, 1.0);   // the world x axis (z = 0)
     float z_axis = 1.0 - min(axis_d.x, 1.0);   // the world z axis (x = 0)
     vec4 c = vec4(u_minor_color.rgb, u_minor_color.a * minor);
     c = mix(c, u_major_color, major);
     c = mix(c, vec4(0.85, 0.3, 0.3, 0.9), x_axis);
     c = mix(c, vec4(0.3, 0.45, 0.9, 0.9), z_axis);
-    c.a *= 1.0 - smoothstep(0.35 * u_fade_distance, u_fade_distance, distance(v_xz, u_center));
+    c.a *= fade;
     if (c.a < 0.002) discard;
     f_color = c;
 }
