@@ -77,11 +77,13 @@ class Overlay:
     lines: list[Lines] = field(default_factory=list)
 
 
-def segment_mesh(segment: Segment, figure: Figure | None = None) -> RenderMesh:
-    """The segment's mesh in its base frame: a CAD object's display copy, the posed psurf, or a
-    box around its sites (m)."""
+def segment_mesh(segment: Segment, figure: Figure | None = None,
+                 max_triangles: int | None = None) -> RenderMesh:
+    """The segment's mesh in its base frame: a CAD object's display copy (at most
+    ``max_triangles``, default the object's own display budget), the posed psurf, or a box
+    around its sites (m)."""
     if isinstance(figure, CADObject):
-        posed = figure.display_mesh()
+        posed = figure.display_mesh() if max_triangles is None else figure.display_mesh(max_triangles)
     else:
         posed = segment.psurf.posed_mesh() if segment.psurf is not None else None
     if posed is not None and len(posed.faces):
@@ -145,14 +147,19 @@ class SceneView:
         return f"fig:{figure}/{segment}"
 
     def upload(self, renderer: "Renderer", env: Environment) -> None:
-        """Upload every segment mesh that the renderer lacks or whose geometry changed."""
+        """Upload every segment mesh that the renderer lacks or whose geometry changed.
+
+        CAD objects are uploaded as their display copy within the renderer's
+        ``display_triangles`` budget (lower on a software rasteriser)."""
+        budget = getattr(renderer, "display_triangles", None)
         for fig in env.figures.values():
+            cad = isinstance(fig, CADObject)
             for seg in fig.segments.values():
                 key = self.mesh_key(fig.name, seg.name)
-                gkey = _geometry_key(seg)
+                gkey = (_geometry_key(seg), budget if cad else None)
                 if self._geometry.get(key) == gkey and renderer.has_mesh(key):
                     continue
-                renderer.add_mesh(key, segment_mesh(seg, fig), replace=True)
+                renderer.add_mesh(key, segment_mesh(seg, fig, budget if cad else None), replace=True)
                 self._geometry[key] = gkey
 
     # ------------------------------------------------------------------ scene

@@ -55,6 +55,11 @@ HARDWARE_SAMPLES = 4
 """Default MSAA samples on a GPU, and of the refined still frame on a software rasteriser."""
 
 
+SOFTWARE_DISPLAY_TRIANGLES = 50_000
+"""Display budget of one CAD object on a software rasteriser (triangles; ``None`` on a GPU, where
+the object's own budget applies). At workbench sizes 50k triangles are still below a pixel each."""
+
+
 def is_software_gl(ctx: moderngl.Context) -> bool:
     """Whether ``ctx`` rasterises on the CPU (Mesa llvmpipe or softpipe, SwiftShader)."""
     name = str(ctx.info.get("GL_RENDERER", "")).lower()
@@ -147,6 +152,8 @@ class Renderer:
             still_samples = HARDWARE_SAMPLES if samples is None else self.samples
         self.still_samples = max(self.samples, min(still_samples, ctx.max_samples))
         self.refine_after_s = 0.3
+        self.display_triangles: int | None = SOFTWARE_DISPLAY_TRIANGLES if self.software else None
+        """Triangle budget for a CAD object's display copy (see ``SceneView.upload``)."""
         self._mesh_program = ctx.program(vertex_shader=shaders.MESH_VERTEX,
                                          fragment_shader=shaders.MESH_FRAGMENT)
         self._pick_program = ctx.program(vertex_shader=shaders.MESH_VERTEX,
