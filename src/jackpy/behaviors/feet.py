@@ -36,6 +36,45 @@ class FeetParams:
                                "mm", (0.0, 0.1))
 
 
+def foot_goals(frame: "Frame", side: str, params: FeetParams | None = None) -> list[tuple]:
+    """The (goal, level) entries holding foot ``side`` at its goal for this frame: toe position,
+    sole flat (pivot) or full orientation (hold), and the heel on the floor when it is kept there.
+    Their names start with the foot's name (``toe left``, ``sole left``, ``heel left``...)."""
+    p = params or FeetParams()
+    st, spec = frame.state, frame.anatomy.feet[side]
+    fs = st.feet[side]
+    ball = f"{spec.ball[0]}.{spec.ball[1]}"
+    out: list[tuple] = [(Position(ball, fs.target, weight=p.weight, name=f"toe {side}"), p.level)]
+    if fs.mode == "hold":
+        out.append((Orientation(ball, fs.target[:3, :3], weight=p.weight, name=f"toe frame {side}"), p.level))
+    else:
+        up_w = fs.target[:3, :3] @ (frame.figure.site_location(*spec.ball)[:3, :3].T @ spec.up)
+        out.append((frame.keep_direction(*spec.ball, spec.up, up_w, p.weight, f"sole {side}"), p.level))
+    if fs.heel == "floor":
+        heel = frame.loop.heel_point(side, fs.target)
+        out.append((Plane(f"{spec.heel[0]}.{spec.heel[1]}", heel, UP, weight=p.weight, name=f"heel {side}"),
+                    p.level))
+    return out
+
+
+FOOT_GOALS = ("toe", "toe frame", "sole", "heel")
+
+
+def replace_foot_goals(frame: "Frame", side: str, hold: bool) -> None:
+    """Drop foot ``side``'s goals from this frame's body pass and, with ``hold``, add them again
+    from its current state. A behavior that re-roots the figure or changes a foot's mode after the
+    feet behavior ran this frame calls it, so the new root carries no goals (the IK cannot move
+    it) and the former root is held from this very frame (else it is free for a frame and flies)."""
+    names = {f"{n} {side}" for n in FOOT_GOALS}
+    frame.body[:] = [(g, lv) for g, lv in frame.body if getattr(g, "name", None) not in names]
+    if hold:
+        params = None
+        for b in frame.loop.behaviors:
+            if isinstance(b, Feet):
+                params = b.params
+        frame.body.extend(foot_goals(frame, side, params))
+
+
 class Feet(BehaviorBase):
     """Holds every non-root foot at its goal (toe constraint + heel on floor)."""
 
@@ -48,23 +87,9 @@ class Feet(BehaviorBase):
     def update(self, frame: "Frame") -> None:
         st, p = frame.state, self.params
         self._anchor_root(frame)
-        for side, spec in frame.anatomy.feet.items():
-            if side == st.root:
-                continue
-            fs = st.feet[side]
-            ball = f"{spec.ball[0]}.{spec.ball[1]}"
-            frame.body.append((Position(ball, fs.target, weight=p.weight, name=f"toe {side}"), p.level))
-            if fs.mode == "hold":
-                frame.body.append((Orientation(ball, fs.target[:3, :3], weight=p.weight,
-                                               name=f"toe frame {side}"), p.level))
-            else:
-                up_w = fs.target[:3, :3] @ (frame.figure.site_location(*spec.ball)[:3, :3].T @ spec.up)
-                frame.body.append((frame.keep_direction(*spec.ball, spec.up, up_w, p.weight, f"sole {side}"),
-                                   p.level))
-            if fs.heel == "floor":
-                heel = frame.loop.heel_point(side, fs.target)
-                frame.body.append((Plane(f"{spec.heel[0]}.{spec.heel[1]}", heel, UP, weight=p.weight,
-                                         name=f"heel {side}"), p.level))
+        for side in frame.anatomy.feet:
+            if side != st.root:
+                frame.body.extend(foot_goals(frame, side, p))
 
     def _anchor_root(self, frame: "Frame") -> None:
         """The IK cannot move the root ([SH4] §4.1.2), so a rooting foot that is off its planted

@@ -12,10 +12,17 @@ pelvis's facing frame) the orientation goal turns, at most ``max_turn`` per fram
 Labanotation default: hanging at the side → palm in; forward or up → palms face each other; out to
 the side → palm forward; across the midline → palm backward. Fingers point along the arm.
 
-**Lean** ([proposal], for reaches beyond the arm): a hand goal with ``lean`` farther than the arm
-can reach is also added to the body pass (the spine and hips lean, balance still held), and the
-balance point is moved ``lean_rate`` per frame towards the goal, so the stepping behavior catches
-the figure with a step when the weight reaches the edge of the feet.
+**Lean** ([proposal], for reaches beyond the arm): while a hand goal with ``lean`` is farther than
+the arm can reach and the palm misses it, the body leans towards it: the chest's up direction
+(and, by ``lean_pelvis`` of the angle, the pelvis) tilts towards the goal by ``lean_turn`` per
+frame, up to ``lean_max``, and the balance point moves ``lean_rate`` per frame towards the goal, so
+the stepping behavior catches the figure with a step when the weight reaches the edge of the feet.
+The lean is a moving *goal* of the body pass, never a hand goal weighed against balance and torso:
+every goal of the body pass stays reachable, and as each frame moves them only a little the body
+pass starts each frame nearly solved (a hand goal in the body pass made it run to its iteration
+cap every frame, 50-120 ms). The tilt is held while the goal is within reach and returns to
+upright at the same rate once the goal is well inside the arm's reach (``lean_release``) or the
+hand no longer leans.
 """
 
 from __future__ import annotations
@@ -56,6 +63,14 @@ class HandsParams:
                              "construction, so weighed with the position: cheaper)", "", (0, 3))
     lean_rate: float = param(0.01, "balance-point shift per frame towards an out-of-reach goal", "cm",
                              (0.0, 0.1))
+    lean_turn: float = param(np.radians(1.5), "largest change of the body's lean per frame", "deg",
+                             (0.0, np.radians(20.0)))
+    lean_max: float = param(np.radians(40.0), "largest lean of the chest from vertical for an out-of-reach "
+                            "goal", "deg", (0.0, np.radians(80.0)))
+    lean_pelvis: float = param(0.5, "share of the lean taken by the pelvis (hips), the rest by the spine",
+                               "", (0.0, 1.0))
+    lean_release: float = param(0.9, "the lean returns to upright once the goal is nearer the shoulder than "
+                                "this x arm length", "", (0.5, 0.97))
 
 
 def turn_towards(r: np.ndarray, target: np.ndarray, max_angle: float) -> tuple[np.ndarray, float]:
@@ -92,6 +107,8 @@ class Hands(BehaviorBase):
 
     def __init__(self, params: HandsParams | None = None, enabled: bool = True) -> None:
         super().__init__(params or HandsParams(), enabled)
+        #: the body's lean: floor vector, direction of the lean times its angle (rad)
+        self.lean = np.zeros(2)
 
     def region(self, frame: "Frame", side: str, point: np.ndarray) -> str:
         """P4 region of a palm position (world) for hand ``side``."""
@@ -151,15 +168,65 @@ class Hands(BehaviorBase):
                 frame.arms[side].append((Orientation(palm, hs.goal[:3, :3], weight=p.orientation_weight,
                                                      name=f"hand frame {side}"),
                                         p.rules_level if hs.rules and p.orientation_rules else p.orientation_level))
-            if hs.lean and self._beyond_reach(frame, side, hs.goal[:3, 3]):
-                frame.body.append((Position(palm, hs.goal, weight=p.lean_weight, name=f"lean {side}"), 1))
+        self._lean_goals(frame)
+
+    def _lean_goals(self, frame: "Frame") -> None:
+        """Tilt this frame's chest-up and pelvis goals (made by the torso and pelvis behaviors, which
+        run before) by the current lean."""
+        angle = float(np.linalg.norm(self.lean))
+        if angle < 1e-9:
+            return
+        a, p = frame.anatomy, self.params
+        d = self.lean / angle
+        axis = np.cross(UP, np.array([d[0], 0.0, d[1]]))  # tilting up towards d
+        chest_rot = rotation_matrix(axis, angle)[:3, :3]
+        pelvis_rot = rotation_matrix(axis, p.lean_pelvis * angle)[:3, :3]
+        for i, (g, lv) in enumerate(frame.body):
+            name = getattr(g, "name", None)
+            if name == "chest up":
+                w = g.weight
+                frame.body[i] = (frame.keep_direction(*a.chest, a.chest_up, chest_rot @ UP, w, "chest up"), lv)
+            elif name == "pelvis" and isinstance(g, Orientation):
+                frame.body[i] = (Orientation(g.site_name, pelvis_rot @ g.target, weight=g.weight, name="pelvis"), lv)
+            elif name == "chest" and isinstance(g, Orientation):  # hold global orientation
+                frame.body[i] = (Orientation(g.site_name, chest_rot @ g.target, weight=g.weight, name="chest"), lv)
 
     def _beyond_reach(self, frame: "Frame", side: str, point: np.ndarray) -> bool:
         shoulder = frame.site(*frame.anatomy.hands[side].shoulder)[:3, 3]
         return bool(np.linalg.norm(point - shoulder) > 0.97 * frame.loop.arm_length(side))
 
+    def _update_lean(self, frame: "Frame") -> None:
+        """Move the lean a step towards the leaning hands' goals, hold it, or let it go upright."""
+        st, a, p = frame.state, frame.anatomy, self.params
+        want, hold = np.zeros(2), False
+        for side, hs in st.hands.items():
+            if hs.goal is None or not hs.lean:
+                continue
+            shoulder = frame.site(*a.hands[side].shoulder)[:3, 3]
+            reach = float(np.linalg.norm(hs.goal[:3, 3] - shoulder)) / frame.loop.arm_length(side)
+            palm = frame.site(*a.hands[side].palm)[:3, 3]
+            if reach > 0.97 and np.linalg.norm(hs.goal[:3, 3] - palm) > 0.01:
+                d = floor(hs.goal[:3, 3] - shoulder)
+                if np.linalg.norm(d) > 1e-6:
+                    want += d / np.linalg.norm(d)
+            elif reach > p.lean_release:
+                hold = True
+        n = float(np.linalg.norm(want))
+        if n > 1e-9:
+            target = p.lean_max * want / n
+        elif hold:
+            return
+        else:
+            target = np.zeros(2)
+        delta = target - self.lean
+        dn = float(np.linalg.norm(delta))
+        if dn > p.lean_turn:
+            delta *= p.lean_turn / dn
+        self.lean = self.lean + delta
+
     def finish(self, frame: "Frame") -> None:
         st, a, p = frame.state, frame.anatomy, self.params
+        self._update_lean(frame)
         for side, hs in st.hands.items():
             palm = frame.site(*a.hands[side].palm)
             for att in hs.attached:

@@ -12,11 +12,22 @@ A2 fires when the pelvis yaw differs from the feet's mean yaw by more than ``twi
 (about 45°): the lighter foot swings round the other, turned 90° in the twist direction, keeping
 the stance width; the pelvis-follows-feet behavior then untwists the pelvis.
 
-A step is a motion primitive of ``frames`` iterations: the figure is rooted through the stance
-foot, the swing foot's goal (full orientation, heel free) follows an arc of peak ``height``
-(smoothstep progress, yaw interpolated), the balance point is held in the world, and on landing
-the foot is planted again and the balance parameters are re-read from the new polygon. A
-refractory period of ``refractory`` frames follows each step.
+A step is a motion primitive in three phases, as a person steps ([SH4] §4.4.6; behaviors.md
+§2.12 "step execution"):
+
+1. **weight shift** (``shift_frames``): the figure is rooted through the stance foot and, both feet
+   still planted, the COM goal moves from where it is to a point over the stance foot
+   (``stance_margin`` inside its footprint, the nearest such point to the balance point);
+2. **swing** (``frames``, plus up to ``settle`` frames for the foot to reach the floor): the swing
+   foot's goal (full orientation, heel free) follows an arc of peak ``height`` (smoothstep
+   progress, yaw interpolated) while the COM stays over the stance foot, the only support;
+3. **weight transfer** (``transfer_frames``): the foot is planted again, the balance parameters are
+   re-read from the new polygon, and the COM goal moves from the stance foot to the balance point
+   in the middle of the new polygon (or to where the user drags it).
+
+The step owns the COM goal from start to end (a COM drag or a lean resumes after it), so the COM
+never hangs beyond the single foot that carries it. A refractory period of ``refractory`` frames
+follows each step.
 """
 
 from __future__ import annotations
@@ -27,8 +38,9 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from jackpy.behaviors.base import BehaviorBase, param
+from jackpy.behaviors.feet import replace_foot_goals
 from jackpy.behaviors.pelvis import feet_yaw, pelvis_yaw
-from jackpy.behaviors.support import wrap
+from jackpy.behaviors.support import convex_hull, floor, signed_distance, wrap
 from jackpy.peabody.transforms import rotation_matrix
 
 if TYPE_CHECKING:
@@ -36,6 +48,7 @@ if TYPE_CHECKING:
 
 Y = np.array([0.0, 1.0, 0.0])
 OTHER = {"left": "right", "right": "left"}
+SWING_MODE = "hold"
 
 
 @dataclass
@@ -55,6 +68,14 @@ class SteppingParams:
                         "", (0, 50))
     land_tolerance: float = param(0.001, "distance from its end pose at which the swing foot has landed",
                                   "mm", (1e-4, 0.02))
+    shift_frames: int = param(2, "frames to shift the weight over the stance foot before the swing foot lifts",
+                              "", (0, 50))
+    transfer_frames: int = param(2, "frames to move the weight from the stance foot to the middle of the new "
+                                 "support polygon after landing", "", (0, 50))
+    lead: float = param(0.05, "how far beyond the balance point (away from the feet) a balance step centres "
+                        "the new support polygon", "cm", (0.0, 0.2))
+    stance_margin: float = param(0.02, "how far inside the stance foot's footprint the COM is held during the "
+                                 "swing", "cm", (0.0, 0.1))
 
 
 @dataclass
@@ -70,7 +91,64 @@ class Step:
     balance_point: np.ndarray
     saved: tuple[str, str]
     turn: float
+    origin: np.ndarray
+    stance_point: np.ndarray
+    shift: int = 0
+    transfer: int = 0
     k: int = 0
+    landed: int = 0
+
+    @property
+    def swinging(self) -> bool:
+        """Whether the swing foot is off the floor (between lift-off and landing)."""
+        return self.k > self.shift and not self.landed
+
+
+#: rows of the loop's footprint corners (heel, ball, toe tip; two each) that carry the weight of a
+#: figure standing on one foot: heel to ball. [proposal] Over the toes alone the stance ankle runs out
+#: of dorsiflexion and the COM cannot be held there kinematically.
+CARRY_ROWS = slice(0, 4)
+
+
+def foot_polygon(frame: "Frame", side: str, target: np.ndarray, rows: slice = CARRY_ROWS) -> np.ndarray:
+    """Floor polygon (CCW) of the part of foot ``side``'s footprint that can carry the figure
+    (heel to ball; ``rows=slice(0, 6)`` for the whole sole) with its ball site at pose ``target``."""
+    pts = frame.loop._footprints[side][rows] @ target[:3, :3].T + target[:3, 3]
+    return convex_hull(floor(pts))
+
+
+def carry_polygon(frame: "Frame") -> np.ndarray:
+    """Floor polygon of both feet's heel-to-ball regions at their goals: where the COM can go and
+    still be carried by one foot once the other lifts. Balance steps fire at its edge."""
+    pts = [foot_polygon(frame, s, f.target) for s, f in frame.state.feet.items()]
+    return convex_hull(np.vstack(pts))
+
+
+def point_over_foot(frame: "Frame", side: str, target: np.ndarray, b: np.ndarray, margin: float) -> np.ndarray:
+    """The floor point nearest ``b`` that lies at least ``margin`` inside foot ``side``'s footprint
+    (Dykstra's projection onto the footprint's edges moved ``margin`` inwards); the foot's
+    reference point when the footprint is narrower than that."""
+    hull = foot_polygon(frame, side, target)
+    ref = frame.loop.foot_reference(side, target)
+    b = np.asarray(b, dtype=float)
+    if len(hull) < 3 or signed_distance(ref, hull) > -margin:
+        return ref
+    e = np.roll(hull, -1, axis=0) - hull
+    n = np.stack([-e[:, 1], e[:, 0]], axis=1) / np.linalg.norm(e, axis=1)[:, None]  # inward (CCW hull)
+    c = (n * hull).sum(axis=1) + margin  # n . p >= c inside the shrunken footprint
+    p = b.copy()
+    fix = np.zeros((len(hull), 2))
+    for _ in range(100):
+        moved = 0.0
+        for i in range(len(hull)):
+            y = p + fix[i]
+            q = y + max(0.0, c[i] - n[i] @ y) * n[i]
+            fix[i] = y - q
+            moved = max(moved, float(np.abs(q - p).max()))
+            p = q
+        if moved < 1e-7:
+            break
+    return p
 
 
 def _smooth(u: float) -> float:
@@ -99,12 +177,28 @@ class Stepping(BehaviorBase):
         """The A1 step for the current balance point, or None when it is well inside the polygon."""
         st, p = frame.state, self.params
         b = st.balance_point
-        if frame.balance_frame().margin(b) < -p.edge_margin:
+        # [proposal] at the edge of the feet's heel-to-ball region rather than of the whole sole:
+        # the step's weight shift then moves the COM sideways over the stance foot, barely back
+        if signed_distance(b, carry_polygon(frame)) < -p.edge_margin:
             return None
-        x, _ = st.balance
-        swing = ("right" if x < 0.5 else "left") if 0.0 <= x <= 1.0 else ("right" if x > 1.0 else "left")
-        other = OTHER[swing]
         ref = {s: frame.loop.foot_reference(s, f.target) for s, f in st.feet.items()}
+        bf = frame.balance_frame()
+        facing = bf.facing / max(float(np.linalg.norm(bf.facing)), 1e-12)
+        d = b - 0.5 * (ref["left"] + ref["right"])
+        along = abs(float(d @ facing))
+        across = abs(float(d @ np.array([-facing[1], facing[0]])))
+        far = max(ref, key=lambda s: float(np.linalg.norm(b - ref[s])))
+        # [proposal] front or back of the feet (the figure's facing, not the balance line's normal,
+        # which turns diagonal when the feet are staggered): the foot farther from the balance point
+        # (the lighter, trailing one) steps, as in walking; beside the feet: the nearer (support)
+        # foot steps outwards, the only one that widens the base on that side
+        swing = far if along >= across else OTHER[far]
+        other = OTHER[swing]
+        # [proposal] the weight is on its way out (the step fires at the heel-to-ball region's edge,
+        # short of the toes): the new polygon is centred ``lead`` further on, where it is going
+        dn = float(np.linalg.norm(d))
+        if dn > 1e-9:
+            b = b + p.lead * d / dn
         new = 2.0 * b - ref[other]
         lateral = ref[swing] - ref[other]
         lateral /= max(np.linalg.norm(lateral), 1e-9)
@@ -117,7 +211,7 @@ class Stepping(BehaviorBase):
             d *= longest / np.linalg.norm(d)
         end = st.feet[swing].target.copy()
         end[[0, 2], 3] += d
-        return self._start(frame, swing, "balance", end)
+        return self._start(frame, swing, "balance", end, b)
 
     def twist_step(self, frame: "Frame") -> Step | None:
         """The A2 step when the pelvis is twisted past the threshold, else None."""
@@ -147,16 +241,24 @@ class Stepping(BehaviorBase):
         end[[0, 2], 3] += new_ref - now_ref
         return self._start(frame, swing, "twist", end)
 
-    def _start(self, frame: "Frame", swing: str, kind: str, end: np.ndarray) -> Step:
+    def _start(self, frame: "Frame", swing: str, kind: str, end: np.ndarray,
+               centre: np.ndarray | None = None) -> Step:
         st, p = frame.state, self.params
         fs = st.feet[swing]
+        stance = OTHER[swing]
         turn = wrap(frame.loop.foot_yaw(swing, end) - frame.loop.foot_yaw(swing, fs.target))
-        step = Step(swing, kind, fs.target.copy(), end, p.frames, p.height, st.balance_point.copy(),
-                    (fs.mode, fs.heel), turn)
-        if st.root != OTHER[swing]:
-            frame.set_root(OTHER[swing])
+        origin = floor(frame.com) if frame.com_goal is None else floor(frame.com_goal)
+        stance_point = point_over_foot(frame, stance, st.feet[stance].target, st.balance_point, p.stance_margin)
+        centre = st.balance_point.copy() if centre is None else np.asarray(centre, dtype=float).copy()
+        step = Step(swing, kind, fs.target.copy(), end, p.frames, p.height, centre,
+                    (fs.mode, fs.heel), turn, origin, stance_point, p.shift_frames, p.transfer_frames)
+        if st.root != stance:
+            # re-rooted after the feet behavior ran this frame: the new root needs no goals, and the
+            # former root must be held from this very frame, or it is free for a frame and flies
+            frame.set_root(stance)
+            replace_foot_goals(frame, stance, hold=False)
+            replace_foot_goals(frame, swing, hold=True)
         st.root_claimed = True
-        fs.mode, fs.heel = "hold", "free"
         frame.note(f"{kind} step: {swing} foot")
         return step
 
@@ -177,35 +279,60 @@ class Stepping(BehaviorBase):
 
     def _advance(self, frame: "Frame") -> None:
         st, s = frame.state, self.step
-        s.k += 1
-        k = min(s.k, s.frames)  # settling frames hold the end pose
-        u = _smooth(k / s.frames)
-        pose = _yaw_rotate(s.start, s.turn * u)
-        pose[:3, 3] = (1 - u) * s.start[:3, 3] + u * s.end[:3, 3] + Y * s.height * np.sin(np.pi * k / s.frames)
-        fs = st.feet[s.side]
-        fs.target = pose if s.k < s.frames else s.end.copy()
+        # where the balance behavior put the weight this frame (the user's drag, or the stored
+        # (x, z) on the feet): the weight goes there once the foot has landed
+        wanted = floor(frame.com_goal) if frame.com_goal is not None else st.balance_point
         if st.com_drag is None:
             st.balance_point = s.balance_point
-            frame.com_goal = np.array([s.balance_point[0], 0.0, s.balance_point[1]])
+            wanted = s.balance_point
+        if s.landed:
+            s.landed += 1
+            u = _smooth(min(1.0, (s.landed - 1) / max(s.transfer, 1)))
+            goal = (1 - u) * s.stance_point + u * wanted
+        else:
+            s.k += 1
+            if s.k <= s.shift:  # weight shift, both feet planted
+                goal = s.origin + _smooth(s.k / s.shift) * (s.stance_point - s.origin)
+            else:
+                if s.k == s.shift + 1:
+                    fs = st.feet[s.side]
+                    fs.mode, fs.heel = SWING_MODE, "free"
+                j = min(s.k - s.shift, s.frames)  # settling frames hold the end pose
+                u = _smooth(j / s.frames)
+                pose = _yaw_rotate(s.start, s.turn * u)
+                pose[:3, 3] = (1 - u) * s.start[:3, 3] + u * s.end[:3, 3] + Y * s.height * np.sin(np.pi * j / s.frames)
+                st.feet[s.side].target = pose if j < s.frames else s.end.copy()
+                replace_foot_goals(frame, s.side, hold=True)
+                goal = s.stance_point
+        frame.com_goal = np.array([goal[0], 0.0, goal[1]])
 
     def finish(self, frame: "Frame") -> None:
         s = self.step
-        if s is None or s.k < s.frames:
+        if s is None:
             return
         st = frame.state
+        if s.landed:
+            if s.landed > s.transfer:
+                self.step = None
+                self.cooldown = self.params.refractory
+            return
+        if s.k - s.shift < s.frames:
+            return
         # land only on the floor: the IK may trail the arc's last frames (its budget is per frame),
         # and a foot planted in the air would stay there once it roots the figure
         spec = frame.anatomy.feet[s.side]
         miss = float(np.linalg.norm(frame.site(*spec.ball)[:3, 3] - s.end[:3, 3]))
-        if miss > self.params.land_tolerance and s.k < s.frames + self.params.settle:
+        if miss > self.params.land_tolerance and s.k - s.shift < s.frames + self.params.settle:
             return
         fs = st.feet[s.side]
         fs.mode, fs.heel = s.saved
         fs.target = s.end.copy()
         st.root_claimed = False
         frame.invalidate_balance()
-        st.balance = frame.balance_frame().params(st.balance_point)
+        st.balance = frame.balance_frame().params(s.balance_point if st.com_drag is None else st.balance_point)
         st.steps_taken += 1
         frame.note(f"{s.kind} step landed: {s.side} foot")
-        self.step = None
-        self.cooldown = self.params.refractory
+        s.landed = 1
+        if s.transfer <= 0:
+            self.step = None
+            self.cooldown = self.params.refractory
