@@ -97,3 +97,33 @@ def test_import_cad_units_up_errors_and_undo(tmp_path):
     assert list(app.env.figures) == names
     app.redo()
     assert "box" in app.env.figures
+
+
+def test_behavior_toggle_and_parameter_changes_are_one_undo_step_each():
+    from jackpy.ui.panels.behaviors import begin_param_drag, change_param, end_param_drag
+
+    app = make_app()
+    loop = app.loops[app.figure_of_interest().name]
+    stepping, hands = loop.behavior("stepping"), loop.behavior("hands")
+    depth = len(app.undo_stack._undo)
+    set_enabled(app, stepping, False)
+    assert not stepping.enabled and len(app.undo_stack._undo) == depth + 1
+    rate0 = hands.params.lean_rate
+    begin_param_drag(app)  # a slider drag: many values, one step
+    for v in (0.012, 0.015, 0.02):
+        assert set_param(app, hands, "lean_rate", v)
+    end_param_drag(app, hands, "lean_rate")
+    assert len(app.undo_stack._undo) == depth + 2
+    assert change_param(app, hands, "orientation_rules", not hands.params.orientation_rules)
+    assert not change_param(app, hands, "max_turn", 10.0)  # refused: no step
+    assert len(app.undo_stack._undo) == depth + 3
+    app.undo()
+    hands = app.loops[app.figure_of_interest().name].behavior("hands")
+    assert hands.params.orientation_rules and hands.params.lean_rate == pytest.approx(0.02)
+    app.undo()
+    assert hands.params.lean_rate == pytest.approx(rate0)
+    assert not stepping.enabled
+    app.undo()
+    assert stepping.enabled
+    app.redo()
+    assert not stepping.enabled

@@ -91,3 +91,25 @@ def test_autosave_recover_and_discard(tmp_path, monkeypatch):
     assert np.array_equal(other.env.figure(name).q, app.env.figure(name).q)
     assert other.session_path is None and other.dirty
     assert session.pending_recovery() is None
+
+
+def test_user_goal_with_behaviors_survives_save_and_open(tmp_path):
+    env, base = session.default_scene()
+    app = App(env)
+    app.scene_dir = base
+    fig = app.figure_of_interest()
+    g = app.add_goal(fig, "right_upper_arm.elbow", "half-space")
+    g.axis = np.array([1.0, 0.0, 0.0])
+    g.weight, g.priority = 3.0, 1
+    app.step()
+    assert app.user_goal_part(g.key) == "right"
+    session.save_session(app, tmp_path / "u.env")
+    other = App(session.default_scene()[0])
+    session.open_session(other, tmp_path / "u.env")
+    h = other.goal(g.key)
+    assert h.kind == "half-space" and np.array_equal(h.axis, g.axis) and (h.weight, h.priority) == (3.0, 1)
+    other.needs_solve = True
+    other.step()
+    loop = other.loops[fig.name]
+    u = loop.user_goal(g.key)
+    assert u.enabled and u.level == 1 and u.goal.weight == 3.0 and u.part == "right"

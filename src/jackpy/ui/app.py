@@ -26,7 +26,7 @@ import numpy as np
 from jackpy.behaviors import BehaviorLoop, FrameReport, manipulation
 from jackpy.behaviors.anatomy import human_anatomy
 from jackpy.errors import JackpyError
-from jackpy.ik.goals import Goal, Orientation, Position, PositionOrientation
+from jackpy.ik.goals import Aim, Goal, HalfSpace, Orientation, Plane, Position, PositionOrientation
 from jackpy.ik.problem import Problem
 from jackpy.ik.result import ITERATION_LIMIT
 from jackpy.ik.solver import solve as ik_solve
@@ -63,6 +63,15 @@ EFFECTOR_SITES: dict[str, tuple[str, ...]] = {
     "pelvis": ("pelvis.centre", "lower_torso.proximal"),
 }
 """The end effectors the operator grabs, by role; the first existing site of each role is used."""
+
+EYE_SEGMENTS = ("left_eye", "right_eye", "eye_left", "eye_right")
+"""Segments whose press grabs the eyes target (the gaze's look-at point) on a behavior-driven human."""
+FRAME_KINDS = ("position", "orientation", "position+orientation")
+"""Goal kinds that bring a site onto a frame (the operator's effector goals are of these kinds)."""
+GOAL_KINDS = FRAME_KINDS + ("aim", "plane", "half-space", "eyes")
+"""Every goal kind: ``aim`` turns the site's local ``axis`` to the target point; ``plane`` keeps the
+site on the plane through the target's origin with normal ``target @ axis``; ``half-space`` keeps
+it on the side that normal points into; ``eyes`` is the gaze behavior's look-at point."""
 
 
 @dataclass
@@ -113,6 +122,9 @@ class GoalEntry:
     chain: str | None = None
     manip: np.ndarray = field(default_factory=lambda: np.eye(4))
     offset: np.ndarray = field(default_factory=lambda: np.eye(3))
+    axis: np.ndarray = field(default_factory=lambda: np.array([0.0, 0.0, 1.0]))
+    """``aim``: the site-local axis aimed at the target point; ``plane``/``half-space``: the normal in
+    the target frame (world normal ``target[:3, :3] @ axis``)."""
 
     def marker_position(self) -> np.ndarray:
         """Where the goal marker is drawn (m)."""
@@ -130,6 +142,8 @@ class Snapshot:
     postures: dict[str, tuple[np.ndarray, np.ndarray, tuple[str, str] | None]]
     goals: list[GoalEntry]
     figures: dict[str, Figure] | None = None
+    behaviors: dict[str, dict[str, tuple[bool, object]]] = field(default_factory=dict)
+    """Per behavior loop (figure name): each behavior's switch and a copy of its parameters."""
 
 
 @dataclass
@@ -163,6 +177,8 @@ class GoalTarget:
     def end_primitive(self) -> None:
         """Ratchet: re-seat the goal orientation on the end effector's actual orientation."""
         g = self.goal
+        if g.kind not in FRAME_KINDS:  # the target is a point or a plane, not the site's frame
+            return
         actual = self.app.env.figure(g.figure).site_world(*g.site.split(".", 1))
         g.offset = g.manip[:3, :3].T @ actual[:3, :3]
         g.target[:3, :3] = actual[:3, :3]
@@ -232,14 +248,27 @@ ITERATIONS_PER_CALL = 15
 """Solver iterations between time-box checks."""
 
 
-def ik_goal(entry: GoalEntry) -> Goal:
-    """The :mod:`jackpy.ik` goal of a workbench goal."""
+def ik_goal(entry: GoalEntry) -> Goal | None:
+    """The :mod:`jackpy.ik` goal of a workbench goal (None for ``eyes``: the gaze behavior's)."""
     chain = entry.chain or None
+    if entry.kind == "eyes":
+        return None
+    if entry.kind == "aim":
+        return Aim(entry.site, entry.target[:3, 3], entry.axis, chain, entry.weight, name=entry.key)
+    if entry.kind in ("plane", "half-space"):
+        cls = Plane if entry.kind == "plane" else HalfSpace
+        return cls(entry.site, entry.target[:3, 3], entry.target[:3, :3] @ entry.axis, chain, entry.weight,
+                   name=entry.key)
     if entry.kind == "position":
         return Position(entry.site, entry.target[:3, 3], chain, entry.weight, entry.key)
     if entry.kind == "orientation":
         return Orientation(entry.site, entry.target[:3, :3], chain, entry.weight, name=entry.key)
     return PositionOrientation(entry.site, entry.target, chain, entry.weight, name=entry.key)
+
+
+def _signature(entry: GoalEntry) -> tuple:
+    """What a goal's compiled form depends on: its kind, site and chain."""
+    return entry.kind, entry.site, entry.chain or None
 
 
 def solve_goals(env: Environment, goals: list[GoalEntry], budget_s: float) -> tuple[int, bool]:
@@ -257,7 +286,11 @@ def solve_goals(env: Environment, goals: list[GoalEntry], budget_s: float) -> tu
             continue
         problem = Problem(fig)
         for g in mine:
-            problem.add(ik_goal(g), level=max(0, g.priority))
+            goal = ik_goal(g)
+            if goal is not None:
+                problem.add(goal, level=max(0, g.priority))
+        if not problem._entries:
+            continue
         while True:
             result = ik_solve(problem, max_iterations=ITERATIONS_PER_CALL)
             iterations += result.iterations
@@ -305,6 +338,10 @@ def effector_segments(figure: Figure, effectors: dict[str, str]) -> dict[str, st
                     seen.add(n)
                     out.setdefault(n, role)
                     stack.append(n)
+    if "head" in effectors:
+        for seg in EYE_SEGMENTS:
+            if out.get(seg) == "head":
+                out[seg] = "eyes"
     return out
 
 
@@ -365,6 +402,8 @@ class App:
         self._drag_changed = False
         self.loops: dict[str, BehaviorLoop] = {}
         """The behavior loop of each standard human in the scene, by figure name."""
+        self._user_goals: dict[str, dict[str, tuple]] = {}
+        """Per figure: goal key -> (loop, signature, user goal or None) of the goals handed to its loop."""
         self._settle = 0
         self.last_report: FrameReport | None = None
         self.sensor_drive: object | None = None
@@ -407,11 +446,44 @@ class App:
         return next((f for f in self.env.figures.values() if not is_object(f)), None)
 
     def _new_goal(self, fig: Figure, site: str, kind: str) -> GoalEntry:
+        """A goal of ``kind`` that holds at the current posture: frame kinds at the site's frame;
+        ``aim`` at the point :data:`LOOK_DISTANCE` along the site's z; ``plane`` and ``half-space``
+        through the site with a world-up normal."""
+        if kind not in GOAL_KINDS:
+            raise ValueError(f"goal kind must be one of {GOAL_KINDS}, not {kind!r}")
         w = fig.site_world(*site.split(".", 1))
         manip = np.eye(4)
         manip[:3, 3] = w[:3, 3]
+        if kind == "aim":
+            manip[:3, 3] = w[:3, 3] + LOOK_DISTANCE * w[:3, 2]
+            target = manip.copy()
+            target[:3, :3] = w[:3, :3]
+            return GoalEntry(f"{fig.name}:{site}", fig.name, site, kind, target, manip=manip,
+                             offset=w[:3, :3].copy())
+        if kind in ("plane", "half-space"):
+            return GoalEntry(f"{fig.name}:{site}", fig.name, site, kind, manip.copy(), manip=manip.copy(),
+                             axis=np.array([0.0, 1.0, 0.0]))
         return GoalEntry(f"{fig.name}:{site}", fig.name, site, kind, w.copy(), manip=manip,
                          offset=w[:3, :3].copy())
+
+    def ensure_eyes_goal(self, fig: Figure) -> GoalEntry:
+        """The eyes target of human ``fig`` (the gaze's look-at point, key ``FIGURE:eyes``), made at
+        the gaze's current target or :data:`LOOK_DISTANCE` ahead of the view site."""
+        key = f"{fig.name}:eyes"
+        g = self.goal(key)
+        if g is not None:
+            return g
+        view = find_effectors(fig).get("head", "head.view")
+        loop = self.loops.get(fig.name)
+        point = loop.state.eyes_target if loop is not None else None
+        if point is None:
+            w = fig.site_world(*view.split(".", 1))
+            point = w[:3, 3] + LOOK_DISTANCE * w[:3, 2]
+        manip = np.eye(4)
+        manip[:3, 3] = point
+        g = GoalEntry(key, fig.name, view, "eyes", manip.copy(), manip=manip)
+        self.goals.append(g)
+        return g
 
     def goal(self, key: str) -> GoalEntry | None:
         return next((g for g in self.goals if g.key == key), None)
@@ -462,7 +534,9 @@ class App:
         """The current undoable state (whole figures too when ``structural``)."""
         postures = {n: (f.q.copy(), f.location.copy(), f.root) for n, f in self.env.figures.items()}
         figures = {n: copy.deepcopy(f) for n, f in self.env.figures.items()} if structural else None
-        return Snapshot(postures, copy.deepcopy(self.goals), figures)
+        behaviors = {n: {b.name: (bool(b.enabled), copy.deepcopy(b.params)) for b in loop.behaviors}
+                     for n, loop in self.loops.items()}
+        return Snapshot(postures, copy.deepcopy(self.goals), figures, behaviors)
 
     def restore(self, snap: Snapshot) -> None:
         """Put back a captured state exactly (no solve follows)."""
@@ -484,7 +558,13 @@ class App:
         self.dirty = True
         if snap.figures is not None:
             self.make_loops()
-        else:
+        for name, saved in snap.behaviors.items():
+            loop = self.loops.get(name)
+            for b in loop.behaviors if loop is not None else ():
+                if b.name in saved:
+                    b.enabled = saved[b.name][0]
+                    b.params = copy.deepcopy(saved[b.name][1])
+        if snap.figures is None:
             for name in list(self.loops):
                 self.sync_behaviors(name)
 
@@ -563,6 +643,11 @@ class App:
             return True
         roles = effector_segments(fig, find_effectors(fig))
         role = roles.get(target.segment)
+        if role == "eyes":
+            if fig.name in self.behavior_figures():
+                self.manipulator.attach(GoalTarget(self, self.ensure_eyes_goal(fig)))
+                return True
+            role = "head"  # plain IK: the eyes have no target of their own; the head is grabbed
         if role is not None:
             g = self.ensure_goal(fig, find_effectors(fig)[role], "position")
             self.manipulator.attach(GoalTarget(self, g))
@@ -630,6 +715,9 @@ class App:
         before = self.capture()
         if target is not None and self._attach_for_drag(target, control):
             self.selection = target
+            grabbed = self.manipulator.target
+            if isinstance(grabbed, GoalTarget) and grabbed.goal.kind == "eyes":
+                self.selection = GoalPick(grabbed.goal.key)  # an eye selects the eyes target
             self._drag_snapshot = before
             self._drag_changed = False
             self._update_operator()
@@ -707,6 +795,7 @@ class App:
         driven = self.behavior_figures()
         for name in driven:
             loop, fig = self.loops[name], self.env.figures[name]
+            self.sync_user_goals(name)
             while True:
                 q0 = fig.q.copy()
                 self.last_report = loop.step()
@@ -749,6 +838,58 @@ class App:
         """Names of the figures whose goals the behaviors solve now."""
         return set(self.loops) if self.settings.behaviors else set()
 
+    def is_user_goal(self, goal: GoalEntry) -> bool:
+        """Whether the behaviors solve ``goal`` as a user goal (:meth:`BehaviorLoop.add_user_goal`):
+        every goal but the effector goals the manipulation commands drive (hands, feet, pelvis, head
+        as frames) and the eyes target."""
+        if goal.kind == "eyes":
+            return False
+        return goal.kind not in FRAME_KINDS or self.role_of(goal) is None
+
+    def sync_user_goals(self, name: str) -> None:
+        """Hand figure ``name``'s user goals to its behavior loop: new ones are added, removed ones
+        removed (a changed kind, site or chain is both); targets, weights, levels and switches are
+        updated in place, so the loop keeps its compiled problems."""
+        loop = self.loops.get(name)
+        if loop is None:
+            return
+        mine = {g.key: g for g in self.goals if g.figure == name and self.is_user_goal(g)}
+        have = self._user_goals.setdefault(name, {})
+        for key in list(have):
+            lp, sig, ug = have[key]
+            e = mine.get(key)
+            if lp is not loop or e is None or sig != _signature(e):
+                if lp is loop and ug is not None:
+                    loop.remove_user_goal(ug)
+                del have[key]
+        for key, e in mine.items():
+            if key not in have:
+                goal = ik_goal(e)
+                try:
+                    ug = loop.add_user_goal(goal, level=max(0, e.priority), enabled=e.enabled, key=key)
+                except (JackpyError, KeyError, ValueError) as exc:
+                    self.info(f"error: goal {key}: {exc}")
+                    ug = None
+                have[key] = (loop, _signature(e), ug)
+                continue
+            ug = have[key][2]
+            if ug is None:
+                continue
+            fresh = ik_goal(e)
+            for attr in ("target", "point", "normal", "axis"):
+                if hasattr(fresh, attr):
+                    setattr(ug.goal, attr, getattr(fresh, attr))
+            loop.set_user_goal(ug, enabled=e.enabled, weight=max(0.0, e.weight), level=max(0, e.priority))
+
+    def user_goal_part(self, key: str) -> str | None:
+        """The pass (``body``, ``head``, ``left``, ``right``) that solves user goal ``key`` while the
+        behaviors are on; None when the behaviors do not solve it."""
+        for have in self._user_goals.values():
+            entry = have.get(key)
+            if entry is not None and entry[2] is not None:
+                return entry[2].part
+        return None
+
     def role_of(self, goal: GoalEntry) -> str | None:
         """The end-effector role (``right_hand`` ...) of a goal's site, if it is one."""
         fig = self.env.figures.get(goal.figure)
@@ -765,8 +906,12 @@ class App:
         loop.reset_state()
         for side in loop.state.feet:
             manipulation.set_foot_behavior(loop, side, mode="hold" if self.settings.feet_hold else "pivot")
+        manipulation.move_eyes(loop, None)  # the eyes target lives in the goals (undo may drop it)
         for g in self.goals:
-            role = self.role_of(g) if g.figure == name else None
+            if g.figure == name and g.kind == "eyes" and g.enabled:
+                manipulation.move_eyes(loop, g.target[:3, 3])
+                continue
+            role = self.role_of(g) if g.figure == name and g.kind in FRAME_KINDS else None
             if role in HAND_ROLES and g.enabled:
                 side = role.split("_")[0]
                 manipulation.move_hand(loop, side, position=g.target[:3, 3], rotation=g.target[:3, :3],
@@ -777,7 +922,11 @@ class App:
         """A dragged effector goal moved from ``before`` to ``goal.target``: tell the behaviors
         through Jack's manipulation commands (move_hand, move_foot, move_pelvis, move_head/eyes)."""
         loop = self.loops.get(goal.figure) if goal.figure in self.behavior_figures() else None
-        role = self.role_of(goal) if loop is not None else None
+        if loop is not None and goal.kind == "eyes":
+            manipulation.move_eyes(loop, goal.target[:3, 3])
+            self._settle = 0
+            return
+        role = self.role_of(goal) if loop is not None and goal.kind in FRAME_KINDS else None
         if role is None:
             return
         t = goal.target

@@ -118,7 +118,7 @@ def session_dict(app: App) -> dict[str, Any]:
                              for b in loop.behaviors} for name, loop in app.loops.items()},
         "goals": [{"key": g.key, "figure": g.figure, "site": g.site, "kind": g.kind, "target": _m(g.target),
                    "enabled": g.enabled, "weight": g.weight, "priority": g.priority, "chain": g.chain,
-                   "manip": _m(g.manip), "offset": _m(g.offset)} for g in app.goals],
+                   "manip": _m(g.manip), "offset": _m(g.offset), "axis": _m(g.axis)} for g in app.goals],
     }
 
 
@@ -268,6 +268,11 @@ def _check_sidecar(data: dict[str, Any]) -> None:
         g = jsonfile.obj(g, where)
         for name in ("key", "figure", "site", "kind"):
             jsonfile.string(jsonfile.required(g, name, where), f"{where}.{name}")
+        from jackpy.ui.app import GOAL_KINDS
+
+        jsonfile.string(g["kind"], f"{where}.kind", GOAL_KINDS)
+        if "axis" in g:
+            jsonfile.vector(g["axis"], f"{where}.axis", 3)
         for name, n in (("target", 16), ("manip", 16), ("offset", 9)):
             jsonfile.vector(jsonfile.required(g, name, where), f"{where}.{name}", n)
         jsonfile.boolean(jsonfile.required(g, "enabled", where), f"{where}.enabled")
@@ -296,7 +301,8 @@ def apply_session(app: App, env: Environment, data: dict[str, Any] | None, base:
             goals.append(GoalEntry(g["key"], g["figure"], g["site"], g["kind"],
                                    _matrix(g["target"], (4, 4), where), bool(g["enabled"]), float(g["weight"]),
                                    int(g["priority"]), g.get("chain"), _matrix(g["manip"], (4, 4), where),
-                                   _matrix(g["offset"], (3, 3), where)))
+                                   _matrix(g["offset"], (3, 3), where),
+                                   _matrix(g.get("axis", [0.0, 0.0, 1.0]), (3,), where)))
     app.scene_dir = base
     app.set_environment(env, goals)
     for name, fig in env.figures.items():

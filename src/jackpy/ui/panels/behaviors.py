@@ -54,10 +54,33 @@ def set_param(app: "App", behavior: Any, name: str, value: Any) -> bool:
 
 
 def set_enabled(app: "App", behavior: Any, on: bool) -> None:
-    """Switch a behavior on or off; re-solve."""
-    behavior.enabled = bool(on)
-    app.goals_changed()
-    app.info(f"behavior {behavior.name} {'on' if on else 'off'}")
+    """Switch a behavior on or off (one undo step); re-solve."""
+    def act() -> None:
+        behavior.enabled = bool(on)
+        app.goals_changed()
+
+    app.command(f"behavior {behavior.name} {'on' if on else 'off'}", act)
+
+
+def change_param(app: "App", behavior: Any, name: str, value: Any) -> bool:
+    """Set one parameter as one undo step (a checkbox, a choice); nothing is recorded when the value
+    is refused. True when set."""
+    before = app.capture()
+    if not set_param(app, behavior, name, value):
+        return False
+    app.undo_stack.push(f"{behavior.name}.{name}", before)
+    app.info(f"{behavior.name}.{name} = {getattr(behavior.params, name)}")
+    return True
+
+
+def begin_param_drag(app: "App") -> None:
+    """A slider drag on a parameter starts (the state before it is the undo step's)."""
+    app.begin_edit()
+
+
+def end_param_drag(app: "App", behavior: Any, name: str) -> None:
+    """The slider drag ended: one undo step for the whole drag."""
+    app.end_edit(f"{behavior.name}.{name}")
 
 
 def draw(app: "App", ui: "UiState") -> None:
@@ -126,6 +149,7 @@ def _param_row(app: "App", b: Any, spec: ParamSpec) -> None:
     label = spec.name + (f" ({spec.unit})" if spec.unit else "")
     v = spec.value
     imgui.set_next_item_width(110)
+    instant = True  # checkboxes and choices are one step each; sliders one step per drag
     if isinstance(v, bool):
         changed, new = imgui.checkbox(label, v)
     elif spec.choices:
@@ -135,6 +159,7 @@ def _param_row(app: "App", b: Any, spec: ParamSpec) -> None:
     elif isinstance(v, int):
         lo, hi = (int(spec.range[0]), int(spec.range[1])) if spec.range else (0, 100)
         changed, new = imgui.slider_int(label, v, lo, hi)
+        instant = False
     elif isinstance(v, float):
         shown = to_display(spec, v)
         if spec.range is not None and np.isfinite(spec.range[1]) and spec.range[1] < 1e3:
@@ -143,6 +168,7 @@ def _param_row(app: "App", b: Any, spec: ParamSpec) -> None:
         else:
             changed, shown = imgui.drag_float(label, shown, 0.01 * max(abs(shown), 0.1), 0.0, 0.0, "%.3g")
         new = from_display(spec, shown)
+        instant = False
     else:
         imgui.text(f"{label}: {v}")
         changed, new = False, v
@@ -151,5 +177,13 @@ def _param_row(app: "App", b: Any, spec: ParamSpec) -> None:
         if spec.range is not None:
             rng = f"  [{to_display(spec, spec.range[0]):.3g} .. {to_display(spec, spec.range[1]):.3g}]"
         imgui.set_tooltip(spec.doc + rng)
+    if instant:
+        if changed:
+            change_param(app, b, spec.name, new)
+        return
+    if imgui.is_item_activated():
+        begin_param_drag(app)
     if changed:
         set_param(app, b, spec.name, new)
+    if imgui.is_item_deactivated_after_edit():
+        end_param_drag(app, b, spec.name)

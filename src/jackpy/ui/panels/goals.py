@@ -1,4 +1,8 @@
-"""Goals list: every goal with enable, weight, priority and chain; add one on a site, remove one."""
+"""Goals list: every goal with enable, weight, priority and chain; add one on a site, remove one.
+
+On a behavior-driven human the goals on sites other than the dragged effectors are the behavior
+loop's user goals (:meth:`App.sync_user_goals`): solved with balance, below the planted feet; the
+row says which pass solves each."""
 
 from __future__ import annotations
 
@@ -12,7 +16,8 @@ if TYPE_CHECKING:
     from jackpy.ui.app import App
     from jackpy.ui.panels import UiState
 
-KINDS = ["position", "orientation", "position+orientation"]
+KINDS = ["position", "orientation", "position+orientation", "aim", "plane", "half-space"]
+"""Kinds the add row offers (aim: the site's z at a point; plane/half-space: through the site, normal up)."""
 
 
 def draw(app: "App", ui: "UiState") -> None:
@@ -28,6 +33,10 @@ def draw(app: "App", ui: "UiState") -> None:
             chosen = isinstance(app.selection, GoalPick) and app.selection.key == g.key
             if imgui.selectable(f"{g.site} ({g.kind})", chosen)[0]:
                 app.select(GoalPick(g.key))
+            if g.figure in app.behavior_figures() and app.is_user_goal(g):
+                part = app.user_goal_part(g.key)
+                imgui.text_disabled(f"with behaviors: {'body pass' if part == 'body' else f'{part} (limbs pass)'}"
+                                    if part else "with behaviors: next frame")
             changed, enabled = imgui.checkbox("enabled", g.enabled)
             if changed:
                 app.command(f"{'enable' if enabled else 'disable'} {g.key}", lambda g=g, e=enabled: _set(g, "enabled", e))
