@@ -264,6 +264,100 @@ def test_resize_and_save_png(renderer, tmp_path):
     assert np.array_equal(np.asarray(Image.open(path)), img)
 
 
+def test_unchanged_frames_are_not_redrawn_and_changes_are(renderer):
+    a = scene(DrawItem("box", at(-0.5), RED, pick_id=1), lines=[Lines(np.zeros((1, 2, 3)))])
+    b = scene(DrawItem("box", at(0.5), RED, pick_id=1), lines=[Lines(np.zeros((1, 2, 3)))])
+    img_a = render(renderer, a)
+    drawn = renderer.frames_drawn
+    cam = front_camera()
+    assert not renderer.render(a, cam.view_matrix(), cam.projection_matrix(renderer.aspect))
+    assert renderer.frames_drawn == drawn
+    img_b = render(renderer, b)  # the instance moved: drawn, with the new instance data uploaded
+    assert renderer.frames_drawn == drawn + 1 and not np.array_equal(img_a, img_b)
+    assert np.array_equal(render(renderer, a), img_a)  # and back
+    assert renderer.pick(*pixel_of([-0.5, 0.0, 0.25])) == 1
+    cam.yaw = 0.2  # a camera move is a change
+    assert renderer.render(a, cam.view_matrix(), cam.projection_matrix(renderer.aspect))
+    moved_line = scene(DrawItem("box", at(-0.5), RED, pick_id=1), lines=[Lines(np.ones((1, 2, 3)))])
+    assert renderer.render(moved_line, cam.view_matrix(), cam.projection_matrix(renderer.aspect))
+
+
+def test_software_gl_draws_without_msaa_and_refines_a_still_frame(egl_context):
+    from jackpy.ui.render import Renderer
+    from jackpy.ui.render.renderer import default_samples, is_software_gl
+
+    r = Renderer(egl_context, (W, H))  # automatic, as the window makes it
+    try:
+        assert r.samples == default_samples(egl_context)
+        if not is_software_gl(egl_context):
+            assert r.samples == min(4, egl_context.max_samples) and not r.refine_pending
+            return
+        assert r.samples == 0 and r.still_samples == min(4, egl_context.max_samples)
+        assert r.display_triangles is not None
+        r.add_mesh("box", box((0.5, 0.5, 0.5)))
+        s = scene(DrawItem("box", rotated_z(0.3), (1.0, 1.0, 1.0, 1.0), pick_id=9))
+        aliased = render(r, s)
+        assert r.drawn_samples == 0 and r.refine_pending
+        values = aliased[..., 0].astype(int)
+        assert ((values > BG8[0] + 10) & (values < values.max() - 30)).sum() < 10  # hard edges
+        assert r.pick(W // 2, H // 2) == 9
+        cam = front_camera()
+        r.refine_after_s = 0.0  # still at once: the same frame is drawn again, anti-aliased
+        assert r.render(s, cam.view_matrix(), cam.projection_matrix(r.aspect))
+        assert r.drawn_samples == r.still_samples and not r.refine_pending
+        smooth = r.read_pixels()[..., 0].astype(int)
+        assert ((smooth > BG8[0] + 10) & (smooth < smooth.max() - 30)).sum() > 10
+        assert not r.render(s, cam.view_matrix(), cam.projection_matrix(r.aspect))  # and then kept
+        assert r.pick(W // 2, H // 2) == 9
+    finally:
+        r.release()
+
+
+def test_msaa_setting_follows_the_gl_renderer_string():
+    from types import SimpleNamespace
+
+    from jackpy.ui.render.renderer import default_samples, is_software_gl
+
+    def ctx(name):
+        return SimpleNamespace(info={"GL_RENDERER": name}, max_samples=8)
+
+    assert is_software_gl(ctx("llvmpipe (LLVM 15.0.6, 256 bits)"))
+    assert is_software_gl(ctx("softpipe"))
+    assert not is_software_gl(ctx("NVIDIA GeForce RTX 3060/PCIe/SSE2"))
+    assert default_samples(ctx("llvmpipe (LLVM 15.0.6, 256 bits)")) == 0
+    assert default_samples(ctx("Mesa Intel(R) UHD Graphics 620 (KBL GT2)")) == 4
+
+
+def test_cad_display_copy_keeps_to_the_renderers_triangle_budget():
+    from jackpy.peabody import Environment
+    from jackpy.peabody import Mesh as PeabodyMesh
+    from jackpy.scene.cad import CADObject, ImportSettings
+    from jackpy.ui.scene_view import SceneView
+
+    class FakeRenderer:
+        display_triangles: int | None = 2_000
+
+        def __init__(self):
+            self.meshes = {}
+
+        def has_mesh(self, key):
+            return key in self.meshes
+
+        def add_mesh(self, key, mesh, replace=False):
+            self.meshes[key] = mesh
+
+    m = uv_sphere(0.4, rings=50, sectors=100)  # 10k triangles
+    env = Environment()
+    cad = env.add(CADObject("cad", ImportSettings("cad.stl"), PeabodyMesh(m.vertices, m.indices)))
+    view, r = SceneView(), FakeRenderer()
+    view.upload(r, env)
+    key = view.mesh_key(cad.name, next(iter(cad.segments)))
+    assert 500 < len(r.meshes[key].indices) <= 2_000
+    r.display_triangles = None  # a GPU: the object's own budget, here the whole mesh
+    view.upload(r, env)
+    assert len(r.meshes[key].indices) == len(m.indices)
+
+
 def test_crease_normals_split_sharp_edges_and_keep_smooth_ones():
     from jackpy.ui.render.mesh import Mesh, crease_normals
 

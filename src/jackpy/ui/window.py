@@ -5,6 +5,11 @@ or the gizmo wants the mouse or keyboard, to the :class:`~jackpy.ui.app.App` han
 positions arrive in window coordinates and are scaled to framebuffer pixels. One
 :meth:`Window.frame` = poll events, ImGui frame with panels and gizmo, ``app.step()`` (IK, then the
 3-D view into the renderer's framebuffer), blit it to the screen, ImGui on top, swap.
+
+:meth:`Window.run` does not spin when nothing happens: after ``IDLE_AFTER_FRAMES`` frames without
+input, solving, sensor streaming or a redrawn 3-D view, it sleeps in ``glfw.wait_events_timeout``
+until input arrives or ``IDLE_WAIT_S`` passes (so progress bars, autosave and the renderer's
+anti-aliased still frame still come). An unchanged 3-D view is not redrawn (see ``Renderer.render``).
 """
 
 from __future__ import annotations
@@ -25,6 +30,10 @@ from jackpy.ui.panels import UiState, draw_all
 from jackpy.ui.render import Renderer
 
 KEY_O, KEY_Q, KEY_S, KEY_T, KEY_R = ord("O"), ord("Q"), ord("S"), ord("T"), ord("R")
+IDLE_AFTER_FRAMES = 3
+"""Quiet frames (ImGui settles hover and layout in one or two) before the loop sleeps."""
+IDLE_WAIT_S = 0.25
+"""Longest sleep of an idle loop, s."""
 
 
 class WindowError(JackpyError):
@@ -68,6 +77,7 @@ class Window:
         self.ui = UiState()
         self.gizmo = Gizmo()
         self._closed = False
+        self._quiet = 0  # frames since the last input or activity
         # keep references: glfw holds only C pointers to these
         self._callbacks = (self.cursor_pos_callback, self.mouse_button_callback, self.scroll_callback,
                            self.key_callback, self.char_callback, self.framebuffer_size_callback)
@@ -91,21 +101,25 @@ class Window:
         return not imgui.get_io().want_capture_mouse and not self.gizmo.wants_mouse()
 
     def cursor_pos_callback(self, window: object, x: float, y: float) -> None:
+        self._quiet = 0
         imgui.backends.glfw_cursor_pos_callback(self._addr, x, y)
         sx, sy = self._scale()
         self.app.on_cursor_pos(x * sx, y * sy)
 
     def mouse_button_callback(self, window: object, button: int, action: int, mods: int) -> None:
+        self._quiet = 0
         imgui.backends.glfw_mouse_button_callback(self._addr, button, action, mods)
         if action != PRESS or self._viewport_has_mouse():
             self.app.on_mouse_button(button, action, mods)
 
     def scroll_callback(self, window: object, dx: float, dy: float) -> None:
+        self._quiet = 0
         imgui.backends.glfw_scroll_callback(self._addr, dx, dy)
         if not imgui.get_io().want_capture_mouse:
             self.app.on_scroll(dx, dy)
 
     def key_callback(self, window: object, key: int, scancode: int, action: int, mods: int) -> None:
+        self._quiet = 0
         imgui.backends.glfw_key_callback(self._addr, key, scancode, action, mods)
         if imgui.get_io().want_capture_keyboard and key != KEY_ESCAPE:
             return
@@ -118,9 +132,11 @@ class Window:
         self.app.on_key(key, scancode, action, mods)
 
     def char_callback(self, window: object, codepoint: int) -> None:
+        self._quiet = 0
         imgui.backends.glfw_char_callback(self._addr, codepoint)
 
     def framebuffer_size_callback(self, window: object, width: int, height: int) -> None:
+        self._quiet = 0
         self.app.resize(width, height)
 
     def _shortcut(self, key: int) -> None:
@@ -147,6 +163,7 @@ class Window:
         w, h = glfw.get_window_size(self.handle)
         self.gizmo.draw(self.app, w, h)
         imgui.render()
+        drawn = self.app.renderer.frames_drawn if self.app.renderer is not None else 0
         if fw > 0 and fh > 0:
             self.app.step()
             self.ctx.screen.use()
@@ -154,6 +171,14 @@ class Window:
             self.app.renderer.blit(self.ctx.screen)
         imgui.backends.opengl3_render_draw_data(imgui.get_draw_data())
         glfw.swap_buffers(self.handle)
+        busy = self.app.needs_solve or self.app.driving or (
+            self.app.renderer is not None and self.app.renderer.frames_drawn != drawn)
+        self._quiet = 0 if busy else self._quiet + 1
+
+    @property
+    def idle(self) -> bool:
+        """Nothing has changed for a few frames: no input, no solve, no streaming, no redraw."""
+        return self._quiet >= IDLE_AFTER_FRAMES
 
     @property
     def should_close(self) -> bool:
@@ -163,6 +188,8 @@ class Window:
         """Run frames until the window is closed; ``autosave`` is called every ``settings.autosave_s``."""
         last = time.monotonic()
         while not self.should_close:
+            if self.idle:
+                glfw.wait_events_timeout(IDLE_WAIT_S)  # wakes on input
             self.frame()
             if autosave is not None and time.monotonic() - last >= self.app.settings.autosave_s:
                 autosave()
