@@ -47,6 +47,8 @@ def foot_goals(frame: "Frame", side: str, params: FeetParams | None = None) -> l
     out: list[tuple] = [(Position(ball, fs.target, weight=p.weight, name=f"toe {side}"), p.level)]
     if fs.mode == "hold":
         out.append((Orientation(ball, fs.target[:3, :3], weight=p.weight, name=f"toe frame {side}"), p.level))
+    elif fs.mode == "free":  # a foot peeling off the floor in a step: its orientation follows the leg
+        pass
     else:
         up_w = fs.target[:3, :3] @ (frame.figure.site_location(*spec.ball)[:3, :3].T @ spec.up)
         out.append((frame.keep_direction(*spec.ball, spec.up, up_w, p.weight, f"sole {side}"), p.level))

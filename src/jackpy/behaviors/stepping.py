@@ -39,6 +39,7 @@ import numpy as np
 
 from jackpy.behaviors.base import BehaviorBase, param
 from jackpy.behaviors.feet import replace_foot_goals
+from jackpy.behaviors.hands import turn_towards
 from jackpy.behaviors.pelvis import feet_yaw, pelvis_yaw
 from jackpy.behaviors.support import convex_hull, floor, signed_distance, wrap
 from jackpy.peabody.transforms import rotation_matrix
@@ -48,7 +49,6 @@ if TYPE_CHECKING:
 
 Y = np.array([0.0, 1.0, 0.0])
 OTHER = {"left": "right", "right": "left"}
-SWING_MODE = "hold"
 
 
 @dataclass
@@ -72,6 +72,8 @@ class SteppingParams:
                               "", (0, 50))
     transfer_frames: int = param(2, "frames to move the weight from the stance foot to the middle of the new "
                                  "support polygon after landing", "", (0, 50))
+    peel: float = param(0.4, "part of the swing during which the foot's orientation is free (it peels off "
+                        "the floor); then it is carried flat to its landing pose", "", (0.0, 0.9))
     lead: float = param(0.05, "how far beyond the balance point (away from the feet) a balance step centres "
                         "the new support polygon", "cm", (0.0, 0.2))
     stance_margin: float = param(0.02, "how far inside the stance foot's footprint the COM is held during the "
@@ -93,6 +95,7 @@ class Step:
     turn: float
     origin: np.ndarray
     stance_point: np.ndarray
+    peel: float = 0.4
     shift: int = 0
     transfer: int = 0
     k: int = 0
@@ -251,7 +254,8 @@ class Stepping(BehaviorBase):
         stance_point = point_over_foot(frame, stance, st.feet[stance].target, st.balance_point, p.stance_margin)
         centre = st.balance_point.copy() if centre is None else np.asarray(centre, dtype=float).copy()
         step = Step(swing, kind, fs.target.copy(), end, p.frames, p.height, centre,
-                    (fs.mode, fs.heel), turn, origin, stance_point, p.shift_frames, p.transfer_frames)
+                    (fs.mode, fs.heel), turn, origin, stance_point, p.peel, p.shift_frames,
+                    p.transfer_frames)
         if st.root != stance:
             # re-rooted after the feet behavior ran this frame: the new root needs no goals, and the
             # former root must be held from this very frame, or it is free for a frame and flies
@@ -294,14 +298,22 @@ class Stepping(BehaviorBase):
             if s.k <= s.shift:  # weight shift, both feet planted
                 goal = s.origin + _smooth(s.k / s.shift) * (s.stance_point - s.origin)
             else:
-                if s.k == s.shift + 1:
-                    fs = st.feet[s.side]
-                    fs.mode, fs.heel = SWING_MODE, "free"
                 j = min(s.k - s.shift, s.frames)  # settling frames hold the end pose
+                fs = st.feet[s.side]
+                # the foot peels off (orientation free: a trailing foot lifted flat would pull the
+                # hip against its extension limit), then is carried in full orientation to land
+                fs.mode, fs.heel = ("free" if j <= s.peel * s.frames else "hold"), "free"
                 u = _smooth(j / s.frames)
                 pose = _yaw_rotate(s.start, s.turn * u)
                 pose[:3, 3] = (1 - u) * s.start[:3, 3] + u * s.end[:3, 3] + Y * s.height * np.sin(np.pi * j / s.frames)
-                st.feet[s.side].target = pose if j < s.frames else s.end.copy()
+                if j < s.frames and fs.mode == "hold":
+                    # from the orientation the peeled-off foot has now, turned evenly to the landing
+                    # one over the frames left (a goal the leg can follow within a frame)
+                    now = frame.site(*frame.anatomy.feet[s.side].ball)[:3, :3]
+                    d = pose[:3, :3] @ now.T
+                    angle = float(np.arccos(np.clip((np.trace(d) - 1.0) / 2.0, -1.0, 1.0)))
+                    pose[:3, :3] = turn_towards(now, pose[:3, :3], angle / (s.frames - j + 1))[0]
+                fs.target = pose if j < s.frames else s.end.copy()
                 replace_foot_goals(frame, s.side, hold=True)
                 goal = s.stance_point
         frame.com_goal = np.array([goal[0], 0.0, goal[1]])
