@@ -104,9 +104,8 @@ def _site_box(segment: Segment) -> RenderMesh:
 def _geometry_key(segment: Segment) -> tuple:
     """Changes whenever what :func:`segment_mesh` returns would change."""
     ps = segment.psurf
-    sites = tuple(s.location[:3, 3].round(9).tobytes() for s in segment.sites.values())
     if ps is None or ps.mesh is None:
-        return ("sites", sites)
+        return ("sites", tuple(s.location[:3, 3].round(9).tobytes() for s in segment.sites.values()))
     return ("psurf", id(ps.mesh), len(ps.mesh.vertices), ps.transform.round(12).tobytes())
 
 

@@ -174,9 +174,19 @@ def _marker_records(g: GoalMarker) -> tuple[np.ndarray, np.ndarray | None]:
     return sticks, head
 
 
+def _item_colors(items: Sequence[DrawItem]) -> np.ndarray:
+    try:  # the common case, every colour RGBA: one array, no per-item broadcasting
+        colors = np.array([tuple(i.color) for i in items], np.float32).reshape(len(items), -1)
+        if colors.shape[1] == 4:
+            return colors
+    except ValueError:  # a mix of RGB and RGBA
+        pass
+    return np.concatenate([rgba(i.color, 1) for i in items])
+
+
 def _item_records(items: Sequence[DrawItem]) -> np.ndarray:
-    models = np.array([np.asarray(i.transform, float) for i in items]).reshape(-1, 4, 4)
-    colors = np.concatenate([rgba(i.color, 1) for i in items]) if items else np.zeros((0, 4))
+    models = np.array([i.transform for i in items], float).reshape(-1, 4, 4)
+    colors = _item_colors(items) if items else np.zeros((0, 4))
     pick = pick_array([i.pick_id for i in items], len(items))
     highlight = np.array([float(i.highlighted) for i in items])
     return pack(models, colors, pick, highlight)
@@ -187,7 +197,7 @@ def _group(keys: list[str], parts: list[np.ndarray]) -> list[InstanceBatch]:
     for key, rec in zip(keys, parts):
         if len(rec):
             grouped.setdefault(key, []).append(rec)
-    return [InstanceBatch(k, np.concatenate(v)) for k, v in grouped.items()]
+    return [InstanceBatch(k, v[0] if len(v) == 1 else np.concatenate(v)) for k, v in grouped.items()]
 
 
 def build_batches(scene: Scene) -> FrameBatches:
