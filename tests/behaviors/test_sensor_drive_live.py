@@ -144,16 +144,26 @@ def test_stepping_from_a_forward_waist_translation():
     base = neutral(drive)
     drive.calibrate(records(base, 0))
     notes = []
+    prev = loop.figure.site_world("pelvis", "centre")[2, 3]
+    worst_back, worst_palm = 0.0, 0.0
     for k in range(1, 61):
         shift = 0.40 * min(1.0, k / 30)
         poses = {p: t.copy() for p, t in base.items()}
         for t in poses.values():
             t[2, 3] += shift
-        notes += drive.step(records(poses, k)).notes
+        r = drive.step(records(poses, k))
+        notes += r.notes
+        z = loop.figure.site_world("pelvis", "centre")[2, 3]
+        worst_back, prev = max(worst_back, prev - z), z
+        worst_palm = max(worst_palm, *(r.errors[p] for p in PALMS))
     st = loop.state
-    assert st.steps_taken >= 1 and any(n.startswith("balance step") for n in notes)
+    assert 1 <= st.steps_taken <= 2 and any(n.startswith("balance step") for n in notes)
+    # no jerk at lift-off (was 10-20 cm back in a frame, palms 15 cm off): the weight shifts over the
+    # stance foot before the swing, the former root foot is held from the frame the root switches
+    assert worst_back < 0.03, f"the pelvis moved {worst_back * 100:.1f} cm back in a frame"
+    assert worst_palm < 0.045, f"a palm was {worst_palm * 100:.1f} cm off its sensor"
     pel = loop.figure.site_world("pelvis", "centre")[:3, 3]
-    assert pel[2] > 0.25 and abs(pel[0]) < 0.05  # the body went forward with the waist
+    assert abs(pel[2] - 0.40) < 0.02 and abs(pel[0]) < 0.05  # the body went forward with the waist, onto it
     bf = loop.balance_frame_for({s: f.target for s, f in st.feet.items()})
     com = loop.figure.centre_of_mass()
     assert bf.margin(np.array([com[0], com[2]])) < 0.0, "the COM is inside the support polygon"
