@@ -5,9 +5,10 @@ The default scene (the 50th-percentile male, chair, work table) is drawn offscre
 timed call is one frame as the window does it: a cursor move, the time-boxed behavior frames
 (``BehaviorLoop.step``), the draw, the blit of the image into a window-sized single-sample
 framebuffer (standing in for ``ctx.screen``; no pixels are read back) and ``ctx.finish()`` (so GPU
-time counts); ``draw_ms`` is that frame less the solve. The renderer is made as the window makes it (``samples=None``: 4x MSAA on a GPU, none
-on a software rasteriser, ``renderer`` in the extras says which). The row's median is the plain
-default scene; ``with_cad_*`` repeats it with a 100k-triangle CAD object in the scene.
+time counts); ``draw_ms`` is that frame less the solve. The renderer is made as the window makes
+it (``samples=None``: 4x MSAA on a GPU, none on a software rasteriser; ``renderer`` in the extras
+says which). The row's median is the plain default scene; ``with_cad_*`` repeats it with a
+100k-triangle CAD object in the scene.
 """
 
 from __future__ import annotations
