@@ -53,11 +53,24 @@ def _rot(axis: int, t: np.ndarray) -> np.ndarray:
     return m
 
 
+def _rmul(a: np.ndarray, m: np.ndarray) -> np.ndarray:
+    """``a @ m`` for a stack of 3x3 matrices ``a`` (..., 3, 3) and one matrix (3, k) or vector (3,).
+
+    One product over the stacked rows instead of one per matrix (numpy's batched ``matmul`` is slow on
+    3x3 blocks); the same dot products, so the same result.
+    """
+    return (a.reshape(-1, 3) @ m).reshape(a.shape[:-1] + m.shape[1:])
+
+
 def _cross(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     """Cross product over the last axis (numpy's ``cross`` costs more than the arithmetic here)."""
     a0, a1, a2 = a[..., 0], a[..., 1], a[..., 2]
     b0, b1, b2 = b[..., 0], b[..., 1], b[..., 2]
-    return np.stack([a1 * b2 - a2 * b1, a2 * b0 - a0 * b2, a0 * b1 - a1 * b0], axis=-1)
+    out = np.empty(np.broadcast_shapes(a.shape, b.shape))
+    out[..., 0] = a1 * b2 - a2 * b1
+    out[..., 1] = a2 * b0 - a0 * b2
+    out[..., 2] = a0 * b1 - a1 * b0
+    return out
 
 
 @dataclass
@@ -75,7 +88,7 @@ class Arm7:
         t = np.asarray(theta, dtype=float)
         R3 = _rot(2, t[..., 0]) @ _rot(0, t[..., 1]) @ _rot(2, t[..., 2])
         R4 = R3 @ _rot(1, t[..., 3])
-        p = R3 @ np.array([-self.a3, 0.0, self.d3]) + R4 @ np.array([0.0, 0.0, self.a4])
+        p = _rmul(R3, np.array([-self.a3, 0.0, self.d3])) + _rmul(R4, np.array([0.0, 0.0, self.a4]))
         out = np.zeros(t.shape[:-1] + (4, 4))
         out[..., :3, :3] = R4 @ _rot(1, t[..., 4]) @ _rot(0, t[..., 5]) @ _rot(2, t[..., 6])
         out[..., :3, 3] = p
@@ -91,9 +104,10 @@ class Arm7:
     def swivel(self, theta: np.ndarray) -> float:
         """Swivel angle (radians) of the posture ``theta``."""
         t = np.asarray(theta, dtype=float)
-        p = self.fk(t)[:3, 3]
+        R3 = _rot(2, t[0]) @ _rot(0, t[1]) @ _rot(2, t[2])
+        e = R3 @ np.array([-self.a3, 0.0, self.d3])
+        p = e + (R3 @ _rot(1, t[3])) @ np.array([0.0, 0.0, self.a4])  # the wrist point, as in fk
         n = p / np.linalg.norm(p)
-        e = (_rot(2, t[0]) @ _rot(0, t[1]) @ _rot(2, t[2])) @ np.array([-self.a3, 0.0, self.d3])
         u, v = self._reference(n)
         return float(np.arctan2(e @ v, e @ u))
 
@@ -119,7 +133,9 @@ class Arm7:
         b2 = np.cos(phi)[:, None] * u + np.sin(phi)[:, None] * v  # elbow direction off the axis (K,3)
         B = np.stack([np.broadcast_to(n, b2.shape), b2, _cross(n, b2)], axis=-1)  # world triads (K,3,3)
         e_loc = np.array([-self.a3, 0.0, self.d3])
-        sols = []
+        # both elbow roots and both shoulder branches in one batch (K per block), blocks in the order
+        # (root, shoulder branch); the wrist's two branches then split each block
+        t1s, t2s, t3s, t4s = [], [], [], []
         for t4 in {base + np.arctan2(np.sqrt(disc), k), base - np.arctan2(np.sqrt(disc), k)}:
             w_loc = e_loc + self.a4 * np.array([np.sin(t4), 0.0, np.cos(t4)])
             a1 = w_loc / np.linalg.norm(w_loc)
@@ -128,21 +144,42 @@ class Arm7:
                 a2 = _cross(a1, Y if abs(a1[1]) < 0.9 else X)
             a2 /= np.linalg.norm(a2)
             A = np.stack([a1, a2, _cross(a1, a2)], axis=-1)
-            Rs = B @ A.T  # (K,3,3)
+            Rs = _rmul(B, A.T)  # (K,3,3)
             for t1, t2, t3 in _zxz(Rs):
-                Rw = np.swapaxes(_rot(2, t1) @ _rot(0, t2) @ _rot(2, t3) @ _rot(1, np.full_like(t1, t4)), -1, -2) @ R
-                for t5, t6, t7 in _yxz(Rw):
-                    sols.append(np.stack([t1, t2, t3, np.full_like(t1, t4), t5, t6, t7], axis=-1))
-        out = np.concatenate(sols, axis=0)
-        out = (out + np.pi) % (2 * np.pi) - np.pi
-        if limits:
-            for shift in (2 * np.pi, -2 * np.pi):
-                moved = out + shift
-                fits = (moved >= self.lower) & (moved <= self.upper) & ~((out >= self.lower) & (out <= self.upper))
-                out = np.where(fits, moved, out)
-            out = out[np.all((out >= self.lower - 1e-12) & (out <= self.upper + 1e-12), axis=1)]
+                t1s.append(t1)
+                t2s.append(t2)
+                t3s.append(t3)
+                t4s.append(np.full_like(t1, t4))
+        raw = np.stack([np.concatenate(t) for t in (t1s, t2s, t3s, t4s)], axis=-1)  # (blocks*K, 4)
+        block = np.repeat(np.arange(len(t1s)), phi.size)
+        head, keep = self._wrap(raw, slice(0, 4), limits)
+        if keep is not None:  # rows whose shoulder or elbow is out of limits need no wrist
+            raw, head, block = raw[keep], head[keep], block[keep]
+        t1, t2, t3, t4 = raw.T  # the wrist from the angles as decomposed, before wrapping
+        Rw = _rmul(np.swapaxes(_rot(2, t1) @ _rot(0, t2) @ _rot(2, t3) @ _rot(1, t4), -1, -2), R)
+        parts, keys = [], []
+        for branch, w in enumerate(_yxz(Rw)):
+            wrist, keep = self._wrap(np.stack(w, axis=-1), slice(4, 7), limits)
+            rows = np.concatenate([head, wrist], axis=-1)
+            parts.append(rows if keep is None else rows[keep])
+            keys.append(2 * block + branch if keep is None else 2 * block[keep] + branch)
+        # the order of the unbatched loops: elbow root, shoulder branch, wrist branch, swivel
+        out = np.concatenate(parts)[np.argsort(np.concatenate(keys), kind="stable")]
         err = np.abs(self.fk(out) - T).max(axis=(1, 2)) if out.size else np.zeros(0)
         return out[err <= tol]
+
+    def _wrap(self, cols: np.ndarray, which: slice, limits: bool) -> tuple[np.ndarray, np.ndarray | None]:
+        """Angles ``cols`` (rows of joints ``which``) into (-pi, pi], shifted by 2 pi where that brings
+        them inside the limits; with ``limits`` also the mask of the rows inside them (else None)."""
+        out = (cols + np.pi) % (2 * np.pi) - np.pi
+        if not limits:
+            return out, None
+        lower, upper = self.lower[which], self.upper[which]
+        for shift in (2 * np.pi, -2 * np.pi):
+            moved = out + shift
+            fits = (moved >= lower) & (moved <= upper) & ~((out >= lower) & (out <= upper))
+            out = np.where(fits, moved, out)
+        return out, np.all((out >= lower - 1e-12) & (out <= upper + 1e-12), axis=1)
 
     def nearest(self, target: np.ndarray, theta: np.ndarray, samples: int = 72) -> np.ndarray | None:
         """The in-limit solution closest to ``theta`` over the posture's swivel and ``samples`` others."""

@@ -23,6 +23,8 @@ extension of the variable-metric method to linear inequalities:
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from jackpy.errors import FigureError
@@ -34,6 +36,15 @@ C1 = 1e-4  # Armijo constant
 BOUND_TOL = 1e-12
 MU_SCALE = 10.0
 MU_FLOOR = 1e-3
+_EMPTY = np.zeros(0)
+
+try:  # numpy.linalg.inv's own kernel, without its per-call checks (the matrix is positive definite)
+    from numpy.linalg import _umath_linalg
+
+    def _inv(M: np.ndarray) -> np.ndarray:
+        return _umath_linalg.inv(M, signature="d->d")
+except (ImportError, AttributeError):  # pragma: no cover
+    _inv = np.linalg.inv
 
 
 def solve(problem: Problem, *, max_iterations: int = 100, tol_position: float = 1e-4,
@@ -118,7 +129,7 @@ class _Run:
 
     def evaluate(self, z: np.ndarray) -> Evaluation:
         self.evaluations += 1
-        return self.comp.evaluate(self.x_base, self.q_base, np.clip(z, self.lo, self.hi))
+        return self.comp.evaluate(self.x_base, self.q_base, np.minimum(np.maximum(z, self.lo), self.hi))
 
     def achieved(self, ev: Evaluation, up_to: int) -> bool:
         for (g, lv), e in zip(self.comp.entries, ev.goal_evals):
@@ -133,13 +144,9 @@ class _Run:
     def _ratio(self, z: np.ndarray, d: np.ndarray, free: np.ndarray,
                inactive_rows: np.ndarray | None) -> tuple[float, int, int]:
         """(alpha_max, blocking variable or -1, blocking row or -1)."""
-        alpha, var, row = np.inf, -1, -1
+        alpha, var, row = math.inf, -1, -1
         with np.errstate(divide="ignore", invalid="ignore"):
-            up = free & (d > 0)
-            dn = free & (d < 0)
-            r = np.full(z.size, np.inf)
-            r[up] = (self.hi[up] - z[up]) / d[up]
-            r[dn] = (self.lo[dn] - z[dn]) / d[dn]
+            r = np.where(free & (d > 0), (self.hi - z) / d, np.where(free & (d < 0), (self.lo - z) / d, np.inf))
             if r.size:
                 var = int(np.argmin(r))
                 alpha = max(float(r[var]), 0.0)
@@ -153,7 +160,7 @@ class _Run:
                     k = int(np.argmin(rr))
                     if rr[k] < alpha:
                         alpha, var, row = max(float(rr[k]), 0.0), -1, int(rows[k])
-        if not np.isfinite(alpha):
+        if not math.isfinite(alpha):
             var = -1
         return alpha, var, row
 
@@ -172,19 +179,20 @@ class _Run:
         small = 0
         end = self.iterations + budget
         held: set[tuple[int, int]] = set()  # added at this iterate with a zero step: not dropped again
+        no_rows = np.zeros((0, z.size))
         for _ in range(budget * 4 + 2 * z.size + 8):
             if self.iterations >= end:
                 break
             if self.achieved(ev, level):
                 return ev, ACHIEVED
             free = ~fixed
-            N = manifold.tangent_rows(ev, free) if manifold else np.zeros((0, z.size))
+            N = manifold.tangent_rows(ev, free) if manifold else no_rows
             C = np.vstack([self.A[rows] * free, N]) if rows else N
             metric.seed(J, free, G)
             d = -metric.project(g, C)
             # multipliers of the working set: drop the most negative when it dominates
             lam_b, lam_r, pg = self._multipliers(g, free, side, rows, N)
-            fixed_idx = np.flatnonzero(fixed)
+            fixed_idx = np.flatnonzero(fixed) if held or lam_b.size else None
             for kind, idx in held:
                 if kind == 0:
                     lam_b[np.searchsorted(fixed_idx, idx)] = np.inf
@@ -192,9 +200,10 @@ class _Run:
                     lam_r[rows.index(idx)] = np.inf
             worst_b = int(np.argmin(lam_b)) if lam_b.size else -1
             worst_r = int(np.argmin(lam_r)) if lam_r.size else -1
-            lb = lam_b[worst_b] if worst_b >= 0 else 0.0
-            lr = lam_r[worst_r] if worst_r >= 0 else 0.0
-            stationary = np.max(np.abs(d), initial=0.0) <= self.tol_step
+            lb = float(lam_b[worst_b]) if worst_b >= 0 else 0.0
+            lr = float(lam_r[worst_r]) if worst_r >= 0 else 0.0
+            dmax = float(np.max(np.abs(d), initial=0.0))
+            stationary = dmax <= self.tol_step
             if min(lb, lr) < -1e-12 and (stationary or -min(lb, lr) >= 0.5 * pg):
                 if lb <= lr:
                     fixed[int(fixed_idx[worst_b])] = False
@@ -220,7 +229,7 @@ class _Run:
                 fixed, side, rows = self._add(fixed, side, rows, var, row, d)
                 held.add((0, var) if var >= 0 else (1, row))
                 continue
-            new = self._line_search(ev, z, d, G, gd, min(1.0, alpha_max), level, manifold, free, rows)
+            new = self._line_search(ev, z, d, G, gd, min(1.0, alpha_max), level, manifold, free, rows, dmax)
             self.iterations += 1
             if new is None:
                 if not metric.pairs:
@@ -253,15 +262,15 @@ class _Run:
                      N: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
         """(bound multipliers, row multipliers, inf-norm of the projected gradient)."""
         E = np.vstack([self.A[rows] * free, N]) if rows else N
-        r = g.copy()
-        lam_r = np.zeros(0)
+        r = g
+        lam_r = _EMPTY
         if E.shape[0]:
             lam = np.linalg.lstsq(E[:, free].T, -g[free], rcond=None)[0]
             r = g + E.T @ lam
             lam_r = lam[:len(rows)]
         fixed = ~free
         lam_b = -side[fixed] * r[fixed]
-        pg = float(np.max(np.abs(r[free]), initial=0.0))
+        pg = float(np.max(np.abs(r[free] if fixed.any() else r), initial=0.0))
         return lam_b, lam_r, pg
 
     @staticmethod
@@ -278,9 +287,12 @@ class _Run:
 
     def _line_search(self, ev: Evaluation, z: np.ndarray, d: np.ndarray, G: float, gd: float,
                      alpha: float, level: int, manifold: Manifold | None, free: np.ndarray,
-                     rows: list[int]) -> tuple[Evaluation, float] | None:
-        """Armijo backtracking on ``(0, alpha]``; with a manifold each trial is restored first."""
-        active_rows = self.A[rows] * free if rows else np.zeros((0, z.size))
+                     rows: list[int], dmax: float) -> tuple[Evaluation, float] | None:
+        """Armijo backtracking on ``(0, alpha]``; with a manifold each trial is restored first.
+
+        ``dmax`` is ``max |d|``.
+        """
+        active_rows = (self.A[rows] * free if rows else np.zeros((0, z.size))) if manifold is not None else None
         for _ in range(30):
             trial: Evaluation | None = self.evaluate(z + alpha * d)
             if manifold is not None:
@@ -289,14 +301,15 @@ class _Run:
             if trial is not None:
                 Ft = trial.levels[level][0]
                 Gt = float(Ft @ Ft)
-                if np.isfinite(Gt) and Gt <= G + C1 * alpha * gd:
+                finite = math.isfinite(Gt)
+                if finite and Gt <= G + C1 * alpha * gd:
                     return trial, alpha
-                denom = 2.0 * (Gt - G - gd * alpha) if np.isfinite(Gt) else 0.0
+                denom = 2.0 * (Gt - G - gd * alpha) if finite else 0.0
                 a_q = -gd * alpha * alpha / denom if denom > 0 else 0.1 * alpha
-                alpha = float(np.clip(a_q, 0.1 * alpha, 0.5 * alpha))
+                alpha = min(max(a_q, 0.1 * alpha), 0.5 * alpha)
             else:
                 alpha *= 0.25
-            if alpha * np.max(np.abs(d)) < 1e-14:
+            if alpha * dmax < 1e-14:
                 return None
         return None
 
@@ -317,46 +330,87 @@ class Metric:
     ``H0 = (2 J^T J + mu I)^-1`` on the free variables (zero on fixed ones), applied by Woodbury in
     O(n m); the last ``memory`` steps ``(s, y)`` update it by BFGS (two-loop recursion). Projection on
     active rows ``C`` (Rosen/Goldfarb): ``Hp = H - H C^T (C H C^T)^+ C H``.
+
+    The pairs restricted to the free variables, their ``s.y`` and the curvature test are worked out
+    once per :meth:`seed` (the first :meth:`apply` after it), not on every application.
     """
 
     def __init__(self, memory: int) -> None:
         self.memory = memory
         self.pairs: list[tuple[np.ndarray, np.ndarray]] = []
+        self._dots: list[tuple[float, float, float]] = []  # (s.y, |s|, |y|) of each pair, unmasked
+        self._used: list[tuple[np.ndarray, np.ndarray, float]] | None = None
+        self.all_free = False
 
     def clear(self) -> None:
         self.pairs.clear()
+        self._dots.clear()
+        self._used = None
 
     def push(self, s: np.ndarray, y: np.ndarray) -> None:
         self.pairs.append((s, y))
-        del self.pairs[:-self.memory]
+        self._dots.append((float(s @ y), math.sqrt(float(s @ s)), math.sqrt(float(y @ y))))
+        del self.pairs[:-self.memory], self._dots[:-self.memory]
+        self._used = None
 
     def seed(self, J: np.ndarray, free: np.ndarray, G: float) -> None:
-        self.free = free
-        self.Jf = J * free
-        self.mu = MU_SCALE * float(np.sqrt(max(G, 0.0))) + MU_FLOOR
-        self.K = np.linalg.inv(0.5 * self.mu * np.eye(J.shape[0]) + self.Jf @ self.Jf.T)
+        all_free = bool(free.all())
+        if not (all_free and self.all_free):  # the free pairs stay valid while nothing is fixed
+            self._used = None
+        self.free, self.all_free = free, all_free
+        self.Jf = J if all_free else J * free
+        self.mu = MU_SCALE * math.sqrt(max(G, 0.0)) + MU_FLOOR
+        M = self.Jf @ self.Jf.T
+        M.flat[::M.shape[0] + 1] += 0.5 * self.mu
+        self.K = _inv(M)
+
+    def _pairs(self) -> list[tuple[np.ndarray, np.ndarray, float]]:
+        """Newest first: the pairs on the free variables that pass the curvature test, with ``s.y``."""
+        used = []
+        free, all_free = self.free, self.all_free
+        for (s, y), (sy, ns, ny) in zip(reversed(self.pairs), reversed(self._dots)):
+            if not all_free:
+                s, y = s * free, y * free
+                sy = float(s @ y)
+                if sy <= 0.0:
+                    continue
+                ns, ny = math.sqrt(float(s @ s)), math.sqrt(float(y @ y))
+            if sy <= 1e-12 * ns * ny or sy <= 0.0:
+                continue
+            used.append((s, y, sy))
+        self._used = used
+        return used
 
     def _h0(self, V: np.ndarray) -> np.ndarray:
-        V = V * (self.free[:, None] if V.ndim == 2 else self.free)
-        return (V - self.Jf.T @ (self.K @ (self.Jf @ V))) / self.mu
+        """``H0 @ V`` for ``V`` already zero on the fixed variables."""
+        Jf = self.Jf
+        return (V - Jf.T @ (self.K @ (Jf @ V))) / self.mu
 
     def apply(self, V: np.ndarray) -> np.ndarray:
         """``H @ V`` for a vector or an (n, k) block (two-loop recursion)."""
-        f = self.free[:, None] if V.ndim == 2 else self.free
-        q = V * f
-        stack = []
-        for s, y in reversed(self.pairs):
-            s, y = s * self.free, y * self.free
-            sy = float(s @ y)
-            if sy <= 1e-12 * np.linalg.norm(s) * np.linalg.norm(y) or sy <= 0.0:
-                continue
-            a = (s @ q) / sy
-            q = q - np.multiply.outer(y, a) if V.ndim == 2 else q - a * y
-            stack.append((s, y, sy, a))
+        used = self._pairs() if self._used is None else self._used
+        if V.ndim == 2:
+            q = V if self.all_free else V * self.free[:, None]
+            stack = []
+            for s, y, sy in used:
+                a = (s @ q) / sy
+                q = q - np.multiply.outer(y, a)
+                stack.append(a)
+            r = self._h0(q)
+            for (s, y, sy), a in zip(reversed(used), reversed(stack)):
+                b = (y @ r) / sy
+                r = r + np.multiply.outer(s, a - b)
+            return r
+        q = V if self.all_free else V * self.free
+        coef = []
+        for s, y, sy in used:
+            a = float(s @ q) / sy
+            q = q - a * y
+            coef.append(a)
         r = self._h0(q)
-        for s, y, sy, a in reversed(stack):
-            b = (y @ r) / sy
-            r = r + np.multiply.outer(s, a - b) if V.ndim == 2 else r + (a - b) * s
+        for (s, y, sy), a in zip(reversed(used), reversed(coef)):
+            b = float(y @ r) / sy
+            r = r + (a - b) * s
         return r
 
     def project(self, g: np.ndarray, C: np.ndarray) -> np.ndarray:
