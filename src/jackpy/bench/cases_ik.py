@@ -121,19 +121,29 @@ def set_targets(fig: Figure, goals: list[ik.Goal], q: np.ndarray) -> None:
     fig.q = saved
 
 
+def _cold(name: str, problem: ik.Problem, new_targets, reset, quick: bool) -> Result:
+    """Solve ``problem`` from the neutral posture for 300 (quick: 50) target sets, scipy on the
+    first 100 (quick: 20): ``new_targets()`` draws a target set, ``reset()`` restores the start."""
+    ours, base = [], []
+    for i in range(50 if quick else 300):
+        new_targets()
+        reset()
+        ours.append(_ours(problem))
+        if i < (20 if quick else 100):
+            base.append(_scipy(problem))
+    return _row(name, ours, base)
+
+
 def body_cold(quick: bool) -> Result:
     fig, problem, goals = body_problem()
     rng = np.random.default_rng(2)
     q0 = fig.q
-    ours, base = [], []
-    n = 50 if quick else 300
-    for i in range(n):
-        set_targets(fig, goals, rng.uniform(fig.lower, fig.upper) * 0.5)  # half the range of motion
+
+    def reset() -> None:
         fig.q = q0
-        ours.append(_ours(problem))
-        if i < (20 if quick else 100):
-            base.append(_scipy(problem))
-    return _row("ik-body-cold", ours, base)
+
+    return _cold("ik-body-cold", problem,  # targets from postures at half the range of motion
+                 lambda: set_targets(fig, goals, rng.uniform(fig.lower, fig.upper) * 0.5), reset, quick)
 
 
 def body_drag(quick: bool) -> Result:
@@ -210,15 +220,9 @@ def human_cold(quick: bool) -> Result:
     rng = np.random.default_rng(4)
     vm = VariableMap(fig)
     x0 = vm.x()
-    ours, base = [], []
-    n = 50 if quick else 300
-    for i in range(n):
-        set_human_targets(fig, goals, human_posture(fig, rng, 0.5))  # half the range of motion
-        vm.apply(x0)
-        ours.append(_ours(problem))
-        if i < (20 if quick else 100):
-            base.append(_scipy(problem))
-    return _row("ik-human-cold", ours, base)
+    return _cold("ik-human-cold", problem,  # targets from postures at half the range of motion
+                 lambda: set_human_targets(fig, goals, human_posture(fig, rng, 0.5)),
+                 lambda: vm.apply(x0), quick)
 
 
 def human_drag(quick: bool) -> Result:
