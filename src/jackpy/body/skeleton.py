@@ -44,6 +44,8 @@ FOREARM_PARTS = (0.4, 0.3, 0.3)
 NEUTRAL_ARM_ELEVATION = 7.0
 #: clavicle joint to shoulder joint centre at 415 mm biacromial breadth (book 2.4: fitted sphere 6.05 cm)
 CLAVICLE_RADIUS = 0.0605
+#: acromion above the shoulder (glenohumeral) joint centre at 415 mm biacromial breadth, m [proposal]
+ACROMION_ABOVE_SHOULDER = 0.035
 
 
 #: DOF names in type order per joint kind (the keys of joint_limits.csv and strength.csv)
@@ -211,6 +213,9 @@ def _arm(b: _Builder, spec: BodySpec, side: str, sx: float, yt: float, s_scale: 
     pts[f"{side}_shoulder"] = shoulder
     pts[f"{side}_clavicle"] = clav
     b.segment(f"{side}_clavicle", clav)
+    # acromion: above the glenohumeral centre by the humeral-head radius plus the acromion's
+    # thickness, about 35 mm at 415 mm biacromial breadth [proposal]
+    b.site(f"{side}_clavicle", "acromion", shoulder + [0.0, ACROMION_ABOVE_SHOULDER * d["shoulder.breadth"] / 0.415, 0.0])
     b.joint(f"{side}_clavicle", "t1", f"{side}_clavicle", f"{side}_clavicle",
             _dofs("clavicle", [("elevation", xb), ("protraction", zb)], sx))
     # the book's 4-rotation shoulder (2.21) as two joints (at most 3 DOFs per joint): its last rotation,
