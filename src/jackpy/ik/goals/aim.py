@@ -31,6 +31,12 @@ def aim_gradient_r(p: np.ndarray, r: np.ndarray, v: np.ndarray, c: float = 1.0) 
 class Aim(SiteGoal):
     """Point the site axis ``axis`` (site frame, default +z) at the world point ``target``."""
 
+    kind = "aim"
+    targets = ("target",)
+    params = ("axis", "c")
+    LOOK_DISTANCE = 1.0
+    """A new aim goal's target lies this far (m) along the site's axis."""
+
     def __init__(self, site: str, target: np.ndarray, axis: np.ndarray = (0.0, 0.0, 1.0),
                  chain: Chain = None, weight: float = 1.0, c: float = 1.0, name: str | None = None) -> None:
         super().__init__(site, chain, weight, name)
@@ -51,3 +57,19 @@ class Aim(SiteGoal):
         u = d / n
         Ju = -(Jr - np.outer(u, u @ Jr)) / n
         return GoalEval(self.c * (u - v), self.c * (Ju - Jv), degrees=angle_deg(u, v))
+
+    def set_frame(self, frame: np.ndarray) -> None:
+        """The target point is the frame's origin."""
+        self.target = point3(frame)
+
+    @classmethod
+    def check_param(cls, name: str, value: object) -> object:
+        return unit(value, "aim axis") if name == "axis" else super().check_param(name, value)
+
+    @classmethod
+    def placement(cls, site_world: np.ndarray, params: dict) -> np.ndarray:
+        """The site's frame moved :attr:`LOOK_DISTANCE` along the aimed axis (where it points now)."""
+        axis = unit(params.get("axis", (0.0, 0.0, 1.0)), "aim axis")
+        out = np.array(site_world, dtype=float)
+        out[:3, 3] += cls.LOOK_DISTANCE * (out[:3, :3] @ axis)
+        return out

@@ -5,13 +5,21 @@ Every potential of book §3.5 is a squared norm, ``P = |f|^2``, so a goal return
 moves. The problem multiplies both by ``sqrt(weight)``; the gradient of the weighted sum is then
 ``2 J^T f`` and ``2 J^T J`` is its Gauss-Newton matrix. End-effector quantities come from
 :class:`Context` (the figure-dependent module), potentials from the goal (the figure-free module).
+
+Goal types register themselves: a class that sets ``kind`` (a stable name used in files) is
+entered in :data:`GOAL_TYPES` when it is defined. ``targets`` and ``params`` name its editable
+attributes (constructor arguments of the same names); :meth:`Goal.to_dict` and
+:meth:`Goal.from_dict` write and read them. A :class:`SiteGoal` kind can also be placed by the
+workbench's operator: :meth:`SiteGoal.placement` is the world frame a new goal takes at a site so
+that it holds, and :meth:`SiteGoal.set_frame` moves its targets with a world frame.
 """
 
 from __future__ import annotations
 
+import inspect
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
 
@@ -25,6 +33,9 @@ if TYPE_CHECKING:
 Chain = str | Sequence[str] | None
 
 EPS = 1e-12
+
+GOAL_TYPES: dict[str, type[Goal]] = {}
+"""Every goal class by its ``kind``, filled as the classes are defined (see :meth:`Goal.__init_subclass__`)."""
 
 
 #: ``LC9 @ v`` is the cross-product matrix ``[v]x`` of a 3-vector, flattened row-major
@@ -100,10 +111,6 @@ class Context:
         mom, ang = self.twist(seg)
         return mom - skews(point) @ ang
 
-    def vector_jacobian(self, seg: int, v: np.ndarray) -> np.ndarray:
-        """d(world direction fixed on ``seg``)/dq over ``cols``, (3, ncols): ``u x v`` (3.8)."""
-        return skews(-np.asarray(v, dtype=float)) @ self.twist(seg)[1]
-
     def stacked_jacobian(self, seg: int, vectors: np.ndarray, weights: np.ndarray,
                          point: bool = False) -> np.ndarray:
         """Rows ``w_k d(v_k)/dq`` (3k, ncols) for directions ``v_k`` (rows of ``vectors``) fixed on
@@ -134,10 +141,47 @@ class GoalEval:
 
 
 class Goal:
-    """Base of every goal. ``weight`` multiplies the potential; ``name`` labels it in results."""
+    """Base of every goal. ``weight`` multiplies the potential; ``name`` labels it in results.
 
+    Subclasses that set ``kind`` register themselves in :data:`GOAL_TYPES`. ``targets``: the
+    attributes holding world targets (points, normals, frames; metres); ``params``: the other
+    editable attributes. Both are constructor arguments of the same names.
+    """
+
+    kind: ClassVar[str] = ""
+    targets: ClassVar[tuple[str, ...]] = ()
+    params: ClassVar[tuple[str, ...]] = ()
     weight: float
     name: str
+
+    def __init_subclass__(cls, **kwargs: Any) -> None:
+        super().__init_subclass__(**kwargs)
+        kind = cls.__dict__.get("kind")
+        if not kind:
+            return
+        old = GOAL_TYPES.get(kind)
+        if old is not None and (old.__module__, old.__qualname__) != (cls.__module__, cls.__qualname__):
+            raise TypeError(f"goal kind {kind!r} is already {old.__module__}.{old.__qualname__}")
+        GOAL_TYPES[kind] = cls
+
+    # ----- files ------------------------------------------------------------------------------------
+    def to_dict(self) -> dict[str, Any]:
+        """``{"kind", "name", "weight", targets..., params...}`` as JSON values (arrays as lists)."""
+        out: dict[str, Any] = {"kind": self.kind, "name": self.name, "weight": float(self.weight)}
+        for attr in self.targets + self.params:
+            out[attr] = _json_value(getattr(self, attr))
+        return out
+
+    @classmethod
+    def from_dict(cls, d: dict[str, Any]) -> Goal:
+        """The goal written by :meth:`to_dict` (of this class, or of the class its ``kind`` names)."""
+        kind = d.get("kind", cls.kind)
+        if kind != cls.kind:
+            if kind not in GOAL_TYPES:
+                raise ValueError(f"unknown goal kind {kind!r}; known: {', '.join(sorted(GOAL_TYPES))}")
+            return GOAL_TYPES[kind].from_dict(d)
+        names = set(inspect.signature(cls.__init__).parameters) - {"self"}
+        return cls(**{k: v for k, v in d.items() if k in names})
 
     def bind(self, figure: Figure) -> None:
         """Resolve names against ``figure`` (called when the problem is compiled)."""
@@ -162,7 +206,10 @@ class Goal:
 
 
 class SiteGoal(Goal):
-    """A goal on an end-effector site ``"segment.site"`` moved by ``chain`` (see :data:`Chain`)."""
+    """A goal on an end-effector site ``"segment.site"`` moved by ``chain`` (see :data:`Chain`).
+
+    Subclasses that the operator can place implement :meth:`set_frame` (and :meth:`placement`
+    when a new goal should not sit at the site's own frame)."""
 
     def __init__(self, site: str, chain: Chain = None, weight: float = 1.0, name: str | None = None) -> None:
         if "." not in site:
@@ -184,6 +231,57 @@ class SiteGoal(Goal):
 
     def chain_mask(self) -> np.ndarray:
         return self._mask
+
+    # ----- the workbench's operator -----------------------------------------------------------------
+    def set_frame(self, frame: np.ndarray) -> None:
+        """Move the targets with the world 4x4 ``frame`` the operator gives (see each kind)."""
+        raise NotImplementedError(f"a {type(self).__name__} goal cannot be placed by a frame")
+
+    @classmethod
+    def placement(cls, site_world: np.ndarray, params: dict[str, Any]) -> np.ndarray:
+        """The world frame a new goal of this kind takes on a site at ``site_world`` so that it holds
+        (default: the site's own frame)."""
+        return np.array(site_world, dtype=float)
+
+    @classmethod
+    def check_param(cls, name: str, value: Any) -> Any:
+        """A parameter value as the goal stores it (arrays as floats; subclasses normalise more)."""
+        return np.array(value, dtype=float) if isinstance(value, (tuple, list)) else value
+
+    @classmethod
+    def at_frame(cls, site: str, frame: np.ndarray, chain: Chain = None, weight: float = 1.0,
+                 name: str | None = None, **params: Any) -> SiteGoal:
+        """A goal of this kind on ``site`` with its targets set from the world ``frame`` and its
+        parameters at their defaults unless given."""
+        goal = cls.__new__(cls)
+        SiteGoal.__init__(goal, site, chain, weight, name)
+        for pname, p in inspect.signature(cls.__init__).parameters.items():
+            if pname in cls.params:
+                value = params.pop(pname, p.default)
+                if value is inspect.Parameter.empty:
+                    raise TypeError(f"{cls.__name__}: parameter {pname!r} has no default")
+                setattr(goal, pname, cls.check_param(pname, value))
+        if params:
+            raise TypeError(f"{cls.__name__} has no parameters {sorted(params)}")
+        goal.set_frame(frame)
+        return goal
+
+    def to_dict(self) -> dict[str, Any]:
+        out = super().to_dict()
+        out["site"] = self.site_name
+        out["chain"] = self.chain if self.chain is None or isinstance(self.chain, str) else list(self.chain)
+        return out
+
+
+def _json_value(v: Any) -> Any:
+    """A goal attribute as a JSON value: arrays as (nested) lists of floats, numpy scalars as floats."""
+    if isinstance(v, np.ndarray):
+        return v.astype(float).tolist()
+    if isinstance(v, np.generic):
+        return v.item()
+    if isinstance(v, (list, tuple)):
+        return [_json_value(x) for x in v]
+    return v
 
 
 def chain_mask(figure: Figure, seg: int, chain: Chain) -> np.ndarray:

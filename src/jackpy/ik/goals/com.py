@@ -26,6 +26,10 @@ class CentreOfMass(Goal):
     figure rooted at that foot); ``None`` (default) frees every DOF.
     """
 
+    kind = "centre-of-mass"
+    targets = ("point",)
+    params = ("up", "chain")
+
     def __init__(self, point: np.ndarray, up: np.ndarray = (0.0, 1.0, 0.0),
                  chain: Sequence[str] | None = None,
                  weight: float = 1.0, name: str | None = None) -> None:

@@ -10,7 +10,7 @@ solver restarts its quasi-Newton metric whenever :attr:`AnyOf.selected` changes.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -40,9 +40,22 @@ class _Group(Goal):
     def leaves(self) -> list[Goal]:
         return [leaf for g in self.goals for leaf in g.leaves()]
 
+    def to_dict(self) -> dict[str, Any]:
+        """The members nested under ``goals``."""
+        return {"kind": self.kind, "name": self.name, "weight": float(self.weight),
+                "goals": [g.to_dict() for g in self.goals]}
+
+    @classmethod
+    def from_dict(cls, d: dict[str, Any]) -> Goal:
+        if d.get("kind", cls.kind) != cls.kind:
+            return Goal.from_dict(d)
+        return cls([Goal.from_dict(g) for g in d["goals"]], d.get("weight", 1.0), d.get("name"))
+
 
 class AllOf(_Group):
     """Conjunction: ``sum_i w_i P_i`` over ``goals``."""
+
+    kind = "all-of"
 
     def evaluate(self, ctx: Context) -> GoalEval:
         evs = [(np.sqrt(g.weight), g.evaluate(ctx)) for g in self.goals]
@@ -52,6 +65,8 @@ class AllOf(_Group):
 
 class AnyOf(_Group):
     """Disjunction: ``min_i w_i P_i`` over ``goals``; :attr:`selected` is the member last chosen."""
+
+    kind = "any-of"
 
     def __init__(self, goals: Sequence[Goal], weight: float = 1.0, name: str | None = None) -> None:
         super().__init__(goals, weight, name)

@@ -14,6 +14,9 @@ from jackpy.ik.goals.base import Chain, Context, GoalEval, SiteGoal, point3, uni
 class HalfSpace(SiteGoal):
     """Keep the origin of ``site`` where ``normal . (r - point) >= 0`` (world, metres)."""
 
+    kind = "half-space"
+    targets = ("point", "normal")
+
     def __init__(self, site: str, point: np.ndarray, normal: np.ndarray, chain: Chain = None,
                  weight: float = 1.0, name: str | None = None) -> None:
         super().__init__(site, chain, weight, name)
@@ -27,3 +30,16 @@ class HalfSpace(SiteGoal):
             return GoalEval(np.zeros(1), np.zeros((1, ctx.cols.size)))
         J = -(self.normal @ ctx.point_jacobian(self.seg, r))
         return GoalEval(np.array([depth]), J[None, :], metres=depth)
+
+    def set_frame(self, frame: np.ndarray) -> None:
+        """Through the frame's origin, normal along the frame's y axis."""
+        f = np.asarray(frame, dtype=float)
+        self.point = point3(f)
+        self.normal = unit(f[:3, 1], "half-space normal")
+
+    @classmethod
+    def placement(cls, site_world: np.ndarray, params: dict) -> np.ndarray:
+        """Through the site, normal world up."""
+        out = np.eye(4)
+        out[:3, 3] = np.asarray(site_world, dtype=float)[:3, 3]
+        return out

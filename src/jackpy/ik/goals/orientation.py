@@ -47,6 +47,10 @@ def orientation_degrees(w: np.ndarray, target: np.ndarray, cx: float, cy: float)
 class Orientation(SiteGoal):
     """Align the axes of ``site`` with ``target`` (3x3 or 4x4 world rotation)."""
 
+    kind = "orientation"
+    targets = ("target",)
+    params = ("cx", "cy")
+
     def __init__(self, site: str, target: np.ndarray, chain: Chain = None, weight: float = 1.0,
                  cx: float = 1.0, cy: float = 1.0, name: str | None = None) -> None:
         super().__init__(site, chain, weight, name)
@@ -57,3 +61,7 @@ class Orientation(SiteGoal):
         w = ctx.site(self.seg, self.location)
         f, J, deg = orientation_terms(ctx, self.seg, w, self.target, self.cx, self.cy)
         return GoalEval(f, J, degrees=deg)
+
+    def set_frame(self, frame: np.ndarray) -> None:
+        """The target is the frame's rotation."""
+        self.target = rotation3(frame)

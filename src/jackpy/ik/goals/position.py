@@ -10,6 +10,9 @@ from jackpy.ik.goals.base import Chain, Context, GoalEval, SiteGoal, point3
 class Position(SiteGoal):
     """Bring the origin of ``site`` to ``target`` (world point, metres; a 4x4 gives its origin)."""
 
+    kind = "position"
+    targets = ("target",)
+
     def __init__(self, site: str, target: np.ndarray, chain: Chain = None, weight: float = 1.0,
                  name: str | None = None) -> None:
         super().__init__(site, chain, weight, name)
@@ -19,3 +22,7 @@ class Position(SiteGoal):
         r = ctx.site(self.seg, self.location)[:3, 3]
         f = r - self.target
         return GoalEval(f, ctx.point_jacobian(self.seg, r), metres=float(np.linalg.norm(f)))
+
+    def set_frame(self, frame: np.ndarray) -> None:
+        """The target is the frame's origin."""
+        self.target = point3(frame)

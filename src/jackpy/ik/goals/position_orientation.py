@@ -14,6 +14,10 @@ from jackpy.ik.goals.orientation import orientation_degrees
 class PositionOrientation(SiteGoal):
     """Bring ``site`` onto the frame ``target`` (world 4x4): origin and x/y axes."""
 
+    kind = "position+orientation"
+    targets = ("target",)
+    params = ("position_weight", "cx", "cy")
+
     def __init__(self, site: str, target: np.ndarray, chain: Chain = None, weight: float = 1.0,
                  position_weight: float = 0.5, cx: float = 1.0, cy: float = 1.0,
                  name: str | None = None) -> None:
@@ -34,3 +38,7 @@ class PositionOrientation(SiteGoal):
         J = ctx.stacked_jacobian(self.seg, cur, weights, point=True)
         deg = orientation_degrees(w, self.target, self.cx, self.cy)
         return GoalEval(f, J, metres=float(np.linalg.norm(cur[0] - self.target[:3, 3])), degrees=deg)
+
+    def set_frame(self, frame: np.ndarray) -> None:
+        """The target is the frame."""
+        self.target = np.asarray(frame, dtype=float).reshape(4, 4).copy()
