@@ -1,8 +1,11 @@
 """Anthropometric populations: percentile tables per sex and dimension, read from package CSV files.
 
-A population file ``data/population_<name>.csv`` holds, per sex and dimension, the values at the
-percentiles 1, 5, 25, 50, 75, 95, 99 (book §2.6.1: body size is not linear in percentile, so the table
-is interpolated, not a normal model). Values are returned in SI units: metres for lengths (the files
+A population file ``data/population_<name>.csv`` holds, per sex and dimension, the mean, the SD, the
+correlations with stature and weight, the least-squares regression on stature and weight
+(``a + b_stature * stature + b_weight * weight``) and, for reading, the values at the percentiles
+1, 5, 25, 50, 75, 95, 99. Percentile <-> value uses the **normal quantile** of the mean and SD
+(**lognormal** for ``mass``), not linear interpolation between the table points (book §2.6.1: body
+size is not linear in percentile). Values are returned in SI units: metres for lengths (the files
 hold millimetres), kilograms for ``mass``. Dimension names are ``part.measure`` (``thigh.length``,
 ``hip.breadth``) plus the globals ``stature``, ``mass`` and ``eye_height``; see docs/body.md.
 """
@@ -15,6 +18,7 @@ from functools import cache
 from importlib import resources
 
 import numpy as np
+from scipy.stats import norm
 
 from jackpy.errors import JackpyError
 
@@ -30,21 +34,51 @@ class AnthropometryError(JackpyError):
 
 @dataclass(frozen=True)
 class Dimension:
-    """One dimension of one sex: ``values`` (7,) at :data:`PERCENTILES`, SI units."""
+    """One dimension of one sex (SI units): ``values`` (7,) at :data:`PERCENTILES`, ``mean`` and ``sd``;
+    ``regression`` = ``(a, b_stature, b_weight)`` (value = a + b_stature * stature_m + b_weight * mass_kg)
+    or ``None`` when the file gives none; ``lognormal`` for body mass."""
 
     name: str
     unit: str
     values: np.ndarray
     measure: str
+    mean: float = float("nan")
+    sd: float = float("nan")
+    regression: tuple[float, float, float] | None = None
+    lognormal: bool = False
+
+    def _log_params(self) -> tuple[float, float]:
+        s2 = np.log1p((self.sd / self.mean) ** 2)
+        return float(np.log(self.mean) - s2 / 2), float(np.sqrt(s2))
 
     def value(self, percentile: float) -> float:
-        """Value at ``percentile`` (1..99) by piecewise-linear interpolation of the table."""
-        check_percentile(percentile)
-        return float(np.interp(percentile, PERCENTILES, self.values))
+        """Value at ``percentile`` (1..99): normal quantile of mean and SD (lognormal for mass);
+        tables without mean/SD interpolate their points in standard-normal z."""
+        z = float(norm.ppf(check_percentile(percentile) / 100.0))
+        if not np.isfinite(self.sd):
+            return float(np.interp(z, norm.ppf(PERCENTILES / 100.0), self.values))
+        if self.lognormal:
+            mu, sigma = self._log_params()
+            return float(np.exp(mu + z * sigma))
+        return self.mean + z * self.sd
 
     def percentile(self, value: float) -> float:
-        """Inverse of :meth:`value`, clamped to 1..99 outside the table."""
-        return float(np.interp(value, self.values, PERCENTILES))
+        """Inverse of :meth:`value`, clamped to 1..99."""
+        if not np.isfinite(self.sd):
+            z = float(np.interp(value, self.values, norm.ppf(PERCENTILES / 100.0)))
+        elif self.lognormal:
+            mu, sigma = self._log_params()
+            z = (np.log(max(value, 1e-12)) - mu) / sigma
+        else:
+            z = (value - self.mean) / self.sd
+        return float(np.clip(100.0 * norm.cdf(z), 1.0, 99.0))
+
+    def predict(self, stature: float, mass: float) -> float:
+        """Regression value (SI) for a body of ``stature`` metres and ``mass`` kg; the mean without one."""
+        if self.regression is None:
+            return self.mean if np.isfinite(self.mean) else float(self.values[3])
+        a, bs, bw = self.regression
+        return float(a + bs * stature + bw * mass)
 
 
 @dataclass(frozen=True)
@@ -128,5 +162,11 @@ def load_population(name: str = "ansur2") -> Population:
         scale = _UNIT_TO_SI[row["unit"]]
         values = np.array([float(row[f"p{int(p)}"]) for p in PERCENTILES]) * scale
         unit = "kg" if row["unit"] == "kg" else "m"
-        dims[row["sex"]][row["dimension"]] = Dimension(row["dimension"], unit, values, row["measure"])
+        mean = float(row["mean"]) * scale if row.get("mean") else float("nan")
+        sd = float(row["sd"]) * scale if row.get("sd") else float("nan")
+        reg = None
+        if row.get("a"):  # file: a in the row's unit, b_stature per mm of stature, b_weight per kg
+            reg = (float(row["a"]) * scale, float(row["b_stature"]) * scale / 1e-3, float(row["b_weight"]) * scale)
+        dims[row["sex"]][row["dimension"]] = Dimension(row["dimension"], unit, values, row["measure"], mean, sd,
+                                                       reg, row["dimension"] == "mass")
     return Population(name, header.get("title", name), header.get("source", ""), dims)

@@ -29,20 +29,31 @@ def figure_name(spec: BodySpec) -> str:
     return f"{spec.sex}_p{p}" + ("" if spec.population == "ansur2" else f"_{spec.population}")
 
 
+FOOTWEAR = ("shoe", "barefoot")
+
+
 def build_spec(sex: str, percentile: float, population: str = "ansur2",
-               overrides: dict[str, float] | None = None, rule: str = "free") -> BodySpec:
-    """The body specification: population percentile then ``overrides`` (SI units) under ``rule``."""
-    return apply_overrides(spec_for(sex, percentile, population), overrides, rule)
+               overrides: dict[str, float] | None = None, rule: str = "free", footwear: str = "shoe") -> BodySpec:
+    """The body specification: population percentile then ``overrides`` (SI units) under ``rule``;
+    ``footwear`` is ``"shoe"`` (labelled outline allowance) or ``"barefoot"``."""
+    if footwear not in FOOTWEAR:
+        raise FigureError(f"footwear must be one of {', '.join(FOOTWEAR)}, not {footwear!r}")
+    spec = apply_overrides(spec_for(sex, percentile, population), overrides, rule)
+    spec.footwear = footwear
+    return spec
 
 
 def make_human(sex: str, percentile: float = 50.0, population: str = "ansur2",
-               overrides: dict[str, float] | None = None, rule: str = "free", name: str | None = None) -> Figure:
+               overrides: dict[str, float] | None = None, rule: str = "free", name: str | None = None,
+               footwear: str = "shoe") -> Figure:
     """A standard human standing in the neutral posture (feet on y = 0, facing +z, left = +x).
 
     ``overrides`` maps dimension names (``stature``, ``mass``, ``thigh.length`` ...) to values in metres
     (kilograms for ``mass``); ``rule`` is the SASS stature rule (``free`` or ``fixed``) they follow.
+    ``footwear``: ``"shoe"`` (the default look: a shoe outline 8 mm behind the heel, 10 mm beyond the
+    toes, 5 mm each side, heights barefoot) or ``"barefoot"`` (the ANSUR II foot).
     """
-    spec = build_spec(sex, percentile, population, overrides, rule)
+    spec = build_spec(sex, percentile, population, overrides, rule, footwear)
     return figure_from_spec(spec, name or figure_name(spec))
 
 
@@ -92,14 +103,17 @@ def place_on_floor(figure: Figure, floor: float = 0.0) -> None:
 
 
 def rescale_in_place(figure: Figure, sex: str, percentile: float, population: str = "ansur2",
-                     overrides: dict[str, float] | None = None, rule: str = "free") -> None:
+                     overrides: dict[str, float] | None = None, rule: str = "free", footwear: str | None = None) -> None:
     """Give ``figure`` the body of another sex/percentile/population, keeping its posture.
 
     Joint displacements, group angles, root and the root's horizontal placement are kept; the figure
     is moved vertically so its lowest support site stays at the height it had (on the floor). Sites,
     surfaces and mass properties are replaced. Goals are not re-solved here.
     """
-    spec = build_spec(sex, percentile, population, overrides, rule)
+    old_spec = getattr(figure, "body_spec", None)
+    if footwear is None:
+        footwear = old_spec.footwear if old_spec is not None else "shoe"
+    spec = build_spec(sex, percentile, population, overrides, rule, footwear)
     new = figure_from_spec(spec, figure.name)
     if set(new.segments) != set(figure.segments) or set(new.joints) != set(figure.joints):
         raise FigureError(f"figure {figure.name!r} does not have the standard human's structure")

@@ -184,14 +184,14 @@ def acromial_height(fig: Figure) -> float:
 def knee_height_sitting(fig: Figure) -> float:
     """KNEE HEIGHT, SITTING: vertical distance from the footrest (floor) to the top of the knee
     (the thigh's upper surface just above the kneecap), sitting, knees at 90°, feet flat. Figure:
-    highest thigh/shank vertex within 6 cm (horizontally) of the knee joint centre."""
+    highest thigh/shank vertex within 4 cm (horizontally) of the knee joint centre."""
     with _kept_posture(fig):
         sitting_posture(fig)
         tops = []
         for s in SIDES:
             knee = site_point(fig, f"{s}_shank", "base")
             pts = surface_points(fig, [f"{s}_thigh", f"{s}_shank"])
-            near = np.abs(pts[:, 2] - knee[2]) < 0.06
+            near = np.abs(pts[:, 2] - knee[2]) < 0.04
             tops.append(pts[near, 1].max())
         return float(np.mean(tops))
 

@@ -61,6 +61,9 @@ class BodySpec:
     dims: dict[str, float]
     eye_drop: float
     overrides: dict[str, float] = field(default_factory=dict)
+    #: ``"shoe"`` (a labelled outline allowance around the barefoot foot: heel +8 mm, toe +10 mm, sides
+    #: +5 mm; heights stay barefoot as in ANSUR II) or ``"barefoot"`` (foot surfaces of the ANSUR foot length)
+    footwear: str = "shoe"
 
     @property
     def stature(self) -> float:
@@ -85,18 +88,32 @@ class BodySpec:
 
 
 def spec_for(sex: str, percentile: float, population: str = "ansur2") -> BodySpec:
-    """The population's body at an overall ``percentile``: every dimension at that percentile, then the
-    path lengths moved (free rule) so that stature is the population's stature at that percentile."""
+    """The population's body at an overall ``percentile``.
+
+    Stature and body mass are the population's values at ``percentile`` (normal quantile; lognormal
+    for mass). Every other dimension is its **regression on stature and weight** (the population
+    file's least-squares coefficients), so a 5th-percentile figure has the arms, breadths and head
+    that 5th-percentile-stature, 5th-percentile-weight people have on average, not each dimension's
+    own 5th percentile. The stature-path regressions sum to stature; any rounding residue is shared
+    by the path lengths so that stature is exact. Populations without regressions take each
+    dimension at ``percentile``.
+    """
     check_sex(sex)
     check_percentile(percentile)
     pop = load_population(population)
-    dims = {n: pop.value(sex, n, percentile) for n in pop.names(sex) if n not in GLOBALS}
+    stature = pop.value(sex, "stature", percentile)
+    mass = pop.value(sex, "mass", percentile)
+
+    def at(name: str) -> float:
+        dim = pop.dimension(sex, name)
+        return dim.predict(stature, mass) if dim.regression is not None else dim.value(percentile)
+
+    dims = {n: at(n) for n in pop.names(sex) if n not in GLOBALS}
     missing = [k for k in STATURE_PATH if k not in dims]
     if missing:
         raise AnthropometryError(f"population {population!r} lacks stature-path dimensions {missing}")
-    stature = pop.value(sex, "stature", percentile)
-    eye_drop = stature - pop.value(sex, "eye_height", percentile)
-    spec = BodySpec(sex, float(percentile), population, pop.value(sex, "mass", percentile), dims, eye_drop)
+    eye_drop = stature - at("eye_height")
+    spec = BodySpec(sex, float(percentile), population, mass, dims, eye_drop)
     _share(spec, stature - spec.stature, list(STATURE_PATH), clamp=False)
     return spec
 

@@ -45,6 +45,10 @@ AROUND_TORSO, AROUND_LIMB, AROUND_DIGIT = 32, 16, 12
 #: torso slabs reach this fraction of the shorter neighbour's height into it, ending OVERLAP_INSET (m) inside
 #: its surface (never coincident with it, so no z-fighting)
 OVERLAP, OVERLAP_INSET = 0.45, 0.0012
+#: the buttock and thigh surfaces stay this far (m) above the ischial seat contact
+SEAT_CLEARANCE = 0.001
+#: shoe outline allowance around the barefoot foot, m: behind the heel, beyond the toes, each side
+SHOE_HEEL, SHOE_TOE, SHOE_SIDE = 0.008, 0.010, 0.005
 
 
 class _Torso:
@@ -221,8 +225,12 @@ def body_shapes(spec: BodySpec, sk: Skeleton) -> dict[str, tuple[Mesh, str]]:
     for k, name in enumerate(spine):
         below = OVERLAP * min(heights[k], heights[k - 1]) if k > 0 else 0.0
         above = OVERLAP * min(heights[k], heights[k + 1]) if k < last else 0.0
-        put(name, torso.slab(bounds[k], bounds[k + 1], below, above, k == 0, k == last),
-            "trousers" if k <= 2 else "shirt")
+        mesh = torso.slab(bounds[k], bounds[k + 1], below, above, k == 0, k == last)
+        if k == 0:  # buttocks flattened on the seat plane: nothing hangs below the ischial tuberosities
+            v = mesh.vertices.copy()
+            v[:, 1] = np.maximum(v[:, 1], pts["seat_y"][1] + SEAT_CLEARANCE)
+            mesh = Mesh(v, mesh.faces)
+        put(name, mesh, "trousers" if k <= 2 else "shirt")
     nb = d["neck.breadth"] / 2
     put("neck", limb(pts["spine_top"] + [0, -0.03 * s, 0.015 * s], pts["head_joint"] + [0, 0.02 * s, 0.01 * s],
                      [(0, nb * 1.05, nb * 1.0), (1, nb * 0.95, nb * 0.95)], AROUND_LIMB, cap0=0, cap1=0), "skin")
@@ -250,7 +258,7 @@ def _arm_shapes(spec: BodySpec, sk: Skeleton, side: str, sx: float, put) -> None
     put(f"{side}_upper_arm", limb(sh + [0, 0.015 * s, 0], elbow,
                                   [(0, 1.12 * ub, 1.12 * ub), (0.3, 1.05 * ub, ub), (0.6, 0.92 * ub, 0.95 * ub),
                                    (1, 0.86 * fb, 0.82 * fb)], hint=np.array([1.0, 0.0, 0.0])), "shirt")
-    fl = d["forearm.length"]
+    fl = float(elbow[1] - pts[f"{side}_wrist"][1])
     stations = [(0, 0.84 * fb, 0.86 * fb), (0.2, 0.95 * fb, fb), (0.5, 0.78 * fb, 0.85 * fb), (1, 0.72 * wb, wb)]
     names = [f"{side}_forearm", f"{side}_forearm_mid", f"{side}_forearm_distal"]
     t0 = 0.0
@@ -338,16 +346,32 @@ def _leg_shapes(spec: BodySpec, sk: Skeleton, side: str, sx: float, put) -> None
     org = sk.origins
     hip, knee, ankle = org[f"{side}_thigh"], org[f"{side}_shank"], org[f"{side}_foot"]
     tb, kb, cb, ab = (d[k] / 2 for k in ("thigh.breadth", "knee.breadth", "calf.breadth", "ankle.breadth"))
+    # thigh: its back (the underside when sitting) no deeper than the seat contact below the hip joint
+    # (ANSUR II seat-to-hip height) and its sagittal thickness that of THIGHCLEARANCE; the section
+    # centre moves forward to keep the thickness
+    seat_hip = hip[1] - sk.points["seat_y"][1] - SEAT_CLEARANCE
+    half_depth = min(tb, d["thigh.clearance"] / 2)
+    # the top of the knee when sitting (thigh front at the knee) is KNEEHEIGHTSITTING above the floor
+    knee_top = d["knee.height_sitting"] - knee[1]
+    kd = min(kb, knee_top - 0.006)
+    stations = [(0, 0.95 * tb, 1.0 * half_depth), (0.15, 0.97 * tb, half_depth), (0.55, 0.8 * tb, 0.82 * half_depth),
+                (0.9, 1.05 * kb, kd), (1, kb, 0.95 * kd)]
+    offsets = [(t, 0.0, max(0.0, rv - seat_hip) + 0.005 * t) for t, _, rv in stations]
     put(f"{side}_thigh", limb(hip + [sx * 0.012 * s, 0.03 * s, -0.005 * s], knee + [0, -0.01 * s, 0],
-                              [(0, 0.95 * tb, 1.0 * tb), (0.15, 0.97 * tb, tb), (0.55, 0.8 * tb, 0.82 * tb),
-                               (0.9, 1.05 * kb, 1.0 * kb), (1, kb, 0.95 * kb)],
-                              offsets=[(0, 0, 0), (0.5, 0, 0.004), (1, 0, 0.005)], cap0=0.5), "trousers")
+                              stations, offsets=offsets, cap0=0.5), "trousers")
+    # the shank's rounded top stays under the knee top (it is the knee's upper surface when sitting)
+    cap_top = float(np.clip((knee_top - 0.02 * s - 0.008) / (0.95 * kb), 0.0, 1.0))
     put(f"{side}_shank", limb(knee + [0, 0.02 * s, 0], ankle + [0, 0.02 * s, 0],
                               [(0, 0.95 * kb, 0.95 * kb), (0.3, cb, 1.05 * cb), (0.75, 0.7 * cb, 0.7 * cb),
                                (1, ab * 0.85, ab * 0.9)],
-                              offsets=[(0, 0, 0), (0.3, 0, -0.012 * s), (1, 0, 0)]), "trousers")
+                              offsets=[(0, 0, 0), (0.3, 0, -0.012 * s), (1, 0, 0)], cap0=cap_top), "trousers")
     fl, fw, ya = d["foot.length"], d["foot.breadth"] / 2, d["foot.height"]
-    # shoe: sections along +z from the heel to past the ball; flat sole on the floor
+    shoe = spec.footwear == "shoe"
+    heel_extra, toe_extra, side_extra = (SHOE_HEEL, SHOE_TOE, SHOE_SIDE) if shoe else (0.0, 0.0, 0.0)
+    fw = fw + side_extra
+    region = "shoe" if shoe else "skin"
+    # sections along +z from the heel to past the ball; flat sole on the floor. The heel point (the
+    # foot's rear, 0.22 foot lengths behind the ankle) and the toe tip (0.78 ahead) are FOOTLENGTH apart
     rows = [(-0.22, 0.62, 0.75), (-0.17, 0.72, 1.25), (-0.05, 0.8, 1.45), (0.12, 0.9, 1.15), (0.3, 0.98, 0.85),
             (0.45, 1.0, 0.68), (0.53, 1.0, 0.62)]
     rings = []
@@ -356,10 +380,15 @@ def _leg_shapes(spec: BodySpec, sk: Skeleton, side: str, sx: float, put) -> None
         c = np.array([ankle[0] - sx * 0.06 * wf * fw * (zf > 0.2), h / 2, zf * fl])
         rings.append(superellipse_ring(c, np.array([1.0, 0, 0]), np.array([0, 1.0, 0]), wf * fw, h / 2,
                                        AROUND_LIMB, 3.0))
-    rings.insert(0, 0.5 * (rings[0] - rings[0].mean(0)) + rings[0].mean(0) - [0, 0, 0.01 * s])
+    back = 0.5 * (rings[0] - rings[0].mean(0)) + rings[0].mean(0)
+    rings[0] = rings[0] + [0, 0, 0.01 * fl]
+    rings.insert(0, back - [0, 0, heel_extra])
     foot = tube(np.stack(rings))
-    put(f"{side}_foot", foot, "shoe")
+    put(f"{side}_foot", foot, region)
     toes0 = np.array([ankle[0] - sx * 0.06 * fw, 0.31 * ya, 0.49 * fl])
-    toes1 = np.array([ankle[0] - sx * 0.08 * fw, 0.27 * ya, 0.78 * fl])
+    toes1 = np.array([ankle[0] - sx * 0.08 * fw, 0.27 * ya, 0.78 * fl + toe_extra])
+    cap = 0.35
+    r_tip = 0.5 * (fw * 0.6 + 0.22 * ya)  # the cap reaches cap * r_tip beyond toes1
+    toes1 = toes1 - [0, 0, cap * r_tip]
     put(f"{side}_toes", limb(toes0, toes1, [(0, fw * 0.98, 0.31 * ya), (0.6, fw * 0.85, 0.27 * ya), (1, fw * 0.6, 0.22 * ya)],
-                             AROUND_LIMB, hint=np.array([1.0, 0.0, 0.0]), cap0=0.0, cap1=0.35, exponent=2.6), "shoe")
+                             AROUND_LIMB, hint=np.array([1.0, 0.0, 0.0]), cap0=0.0, cap1=cap, exponent=2.6), region)

@@ -44,6 +44,9 @@ FOREARM_PARTS = (0.4, 0.3, 0.3)
 NEUTRAL_ARM_ELEVATION = 7.0
 #: clavicle joint to shoulder joint centre at 415 mm biacromial breadth (book 2.4: fitted sphere 6.05 cm)
 CLAVICLE_RADIUS = 0.0605
+#: half the distance between the ischial tuberosities at 1.756 m stature, m (about 11 cm apart; Dempster
+#: 1955 / Schneider et al. 1983 seat-pressure peaks 10-13 cm apart) [proposal]
+ISCHIAL_HALF_SPACING = 0.055
 #: acromion above the shoulder (glenohumeral) joint centre at 415 mm biacromial breadth, m [proposal]
 ACROMION_ABOVE_SHOULDER = 0.035
 
@@ -155,6 +158,13 @@ def build_skeleton(spec: BodySpec, name: str = "human") -> Skeleton:
     # ---- pelvis and spine ------------------------------------------------------------------------
     b.segment("pelvis", pts["hip_y"])
     b.site("pelvis", "centre", pts["hip_y"])
+    # ischial tuberosities under the compressed buttock tissue: the seat contact when sitting erect,
+    # seat.hip_height below the hip joint centres (ANSUR II: sitting height - stature + trochanterion
+    # height), ISCHIAL_HALF_SPACING apart either side, a little behind the hip joints
+    seat_y = yh - d["seat.hip_height"]
+    pts["seat_y"] = np.array([0.0, seat_y, 0.0])
+    for side, sx in SIDES:
+        b.site("pelvis", f"{side}_ischium", [sx * ISCHIAL_HALF_SPACING * s_scale, seat_y, -0.03 * s_scale])
     levels = spine_levels()
     heights = np.array([lv["height"] for lv in levels[:-1]], dtype=float)
     heights *= d["spine.length"] / heights.sum()
@@ -207,15 +217,17 @@ def _arm(b: _Builder, spec: BodySpec, side: str, sx: float, yt: float, s_scale: 
     d = spec.dims
     pts = b.sk.points
     xb, zb = (0.0, 0.0, 1.0), (0.0, -1.0, 0.0)  # the book's shoulder frame: x forward, z down
+    above = ACROMION_ABOVE_SHOULDER * d["shoulder.breadth"] / 0.415
+    acromion_y = yt - d["acromion.drop"]
     shoulder = np.array([sx * (d["bideltoid.breadth"] / 2 - d["upper_arm.breadth"] / 2 - 0.005),
-                         yt - 0.055 * spec.stature, 0.0])
+                         acromion_y - above, 0.0])
     clav = shoulder - [sx * CLAVICLE_RADIUS * d["shoulder.breadth"] / 0.415, 0.0, 0.0]
     pts[f"{side}_shoulder"] = shoulder
     pts[f"{side}_clavicle"] = clav
     b.segment(f"{side}_clavicle", clav)
     # acromion: above the glenohumeral centre by the humeral-head radius plus the acromion's
     # thickness, about 35 mm at 415 mm biacromial breadth [proposal]
-    b.site(f"{side}_clavicle", "acromion", shoulder + [0.0, ACROMION_ABOVE_SHOULDER * d["shoulder.breadth"] / 0.415, 0.0])
+    b.site(f"{side}_clavicle", "acromion", shoulder + [0.0, above, 0.0])
     b.joint(f"{side}_clavicle", "t1", f"{side}_clavicle", f"{side}_clavicle",
             _dofs("clavicle", [("elevation", xb), ("protraction", zb)], sx))
     # the book's 4-rotation shoulder (2.21) as two joints (at most 3 DOFs per joint): its last rotation,
@@ -226,20 +238,21 @@ def _arm(b: _Builder, spec: BodySpec, side: str, sx: float, yt: float, s_scale: 
     b.segment(f"{side}_upper_arm", shoulder)
     b.joint(f"{side}_shoulder", f"{side}_shoulder_frame", "shoulder", f"{side}_upper_arm",
             _dofs("shoulder", [("twist", zb), ("elevation", xb), ("abduction", zb)], sx))
-    elbow = shoulder - [0.0, d["upper_arm.length"], 0.0]
+    upper, fore = arm_lengths(spec, abs(shoulder[0]), abs(clav[0]))
+    elbow = shoulder - [0.0, upper, 0.0]
     b.segment(f"{side}_forearm", elbow)
     b.joint(f"{side}_elbow", f"{side}_upper_arm", "elbow", f"{side}_forearm",
             _dofs("elbow", [("flexion", (-1.0, 0.0, 0.0))], sx))
     y = elbow[1]
     parent = f"{side}_forearm"
     for k, (part, frac) in enumerate(zip(("mid", "distal"), FOREARM_PARTS[:2]), start=1):
-        y -= frac * d["forearm.length"]
+        y -= frac * fore
         child = f"{side}_forearm_{part}"
         b.segment(child, [elbow[0], y, elbow[2]])
         b.joint(f"{side}_forearm_twist_{k}", parent, "twist", child,
                 _dofs("forearm_twist", [("pronation", (0.0, -1.0, 0.0))], sx))
         parent = child
-    wrist = elbow - [0.0, d["forearm.length"], 0.0]
+    wrist = elbow - [0.0, fore, 0.0]
     pts[f"{side}_wrist"] = wrist
     palm = f"{side}_palm"
     b.segment(palm, wrist)
@@ -272,6 +285,22 @@ def _arm(b: _Builder, spec: BodySpec, side: str, sx: float, yt: float, s_scale: 
            [("thumb_cmc", [("abduction", tuple(abd)), ("flexion", tuple(flex))]),
             ("thumb_mcp", [("flexion", tuple(flex))]),
             ("thumb_ip", [("flexion", tuple(flex))])])
+
+
+def arm_lengths(spec: BodySpec, shoulder_x: float, clavicle_x: float) -> tuple[float, float]:
+    """Upper-arm and forearm joint-centre lengths (m) that give the figure its ANSUR II ``span``: with
+    the arms outstretched sideways (elevation 90°, the clavicle raised by Otani's allocation) the
+    middle fingertips are ``span`` apart. The shoulder-to-wrist length is shared in the ratio of the
+    population's ``upper_arm.length`` to ``forearm.length`` (acromion-radiale and radiale-stylion
+    lengths; taken alone they overstate span by about 9 cm, the landmarks being on the bone surface)."""
+    from jackpy.body.shoulder import allocate
+
+    d = spec.dims
+    phi_c = np.radians(allocate(90.0, 0.0)[0])
+    reach_x = clavicle_x + (shoulder_x - clavicle_x) * np.cos(phi_c)
+    arm = d["span"] / 2 - reach_x - d["hand.length"]
+    share = d["upper_arm.length"] / (d["upper_arm.length"] + d["forearm.length"])
+    return float(arm * share), float(arm * (1.0 - share))
 
 
 def _digit(b: _Builder, side: str, sx: float, digit: str, palm: str, base: np.ndarray, direction: np.ndarray,
