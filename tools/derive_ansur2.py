@@ -71,6 +71,13 @@ KEY_DIMENSIONS: dict[str, str] = {
     "head_breadth": "headbreadth",
     "head_length": "headlength",
     "head_height": "tragiontopofhead",
+    "neck_circumference": "neckcircumference",
+    "biceps_circumference_flexed": "bicepscircumferenceflexed",
+    "forearm_circumference_flexed": "forearmcircumferenceflexed",
+    "wrist_circumference": "wristcircumference",
+    "thigh_circumference": "thighcircumference",
+    "calf_circumference": "calfcircumference",
+    "bimalleolar_breadth": "bimalleolarbreadth",
 }
 
 PROVENANCE = """\
