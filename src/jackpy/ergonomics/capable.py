@@ -1,0 +1,108 @@
+"""Percent capable: for each main joint moment, the share of a population (by sex) strong enough.
+
+The required moments are the static joint torques of :func:`jackpy.analysis.statics.joint_torques`
+(gravity on every segment plus ``task.load_kg`` in the hands, half at each grip site, the figure held
+at its root). The strength of the muscle group that must act comes from the public API of
+:mod:`jackpy.body.strength` (``torque(kind, dof, sex, percentile)``; its data and percentile model are
+documented there). Percent capable = ``100 - P*`` where the group's strength at percentile ``P*``
+equals the required moment, found on a grid of percentiles (1-99, the range that module accepts) and
+interpolated linearly in their normal quantiles z (exact for that module's linear-in-z model); the
+result is clamped to 1-99 % (99 means 99 % or more, 1 means 1 % or fewer). The weakest joint is the one
+with the lowest percent capable.
+
+Joints: neck (atlanto-occipital), trunk (L5/S1), each shoulder (its three DOFs), elbow and wrist; the
+hips, knees and ankles only when the figure is rooted at a foot (otherwise its legs hang from the root
+and their torques are not the standing ones: flagged).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+from scipy.stats import norm
+
+from jackpy.analysis.statics import Load, joint_torques
+from jackpy.ergonomics.base import Assessment, Method, Task, register
+from jackpy.ergonomics.posture import SIDES, Posture
+from jackpy.peabody.kinematics import FKResult
+from jackpy.peabody.model import Figure
+
+VALIDITY = ("static exertions; strength from jackpy.body.strength (50th-percentile torques, female ratio, "
+            "normal spread); posture dependence as that module provides it")
+#: the percentile grid and its normal quantiles
+P_GRID = np.array([1, 2, 5, 10, 20, 30, 40, 50, 60, 70, 80, 90, 95, 98, 99], dtype=float)
+Z_GRID = norm.ppf(P_GRID / 100.0)
+_UPPER_JOINTS = ["atlanto_occipital", "l5_s1"] + [f"{s}_{j}" for s in SIDES for j in ("shoulder", "elbow", "wrist")]
+_LEG_JOINTS = [f"{s}_{j}" for s in SIDES for j in ("hip", "knee", "ankle")]
+
+
+def _strength_grid(kind: str, dof: str, sex: str) -> np.ndarray:
+    """(len(Z_GRID), 2): (toward-lower, toward-upper) strength N·m at each grid percentile."""
+    from jackpy.body.strength import torque
+
+    return np.array([torque(kind, dof, sex, float(p)) for p in P_GRID])
+
+
+def percent_capable(required: float, strengths: np.ndarray) -> float:
+    """Percent of the population whose strength (ascending over :data:`Z_GRID`) exceeds ``required``."""
+    z = float(np.interp(required, strengths, Z_GRID))  # clamps to the grid's ends
+    return float(100.0 * norm.sf(z))
+
+
+def assess(figure: Figure, task: Task, posture: Posture, fk: FKResult | None = None) -> Assessment:
+    """Percent capable per joint DOF, by sex; the score is the lowest over the chosen sexes."""
+    from jackpy.body.skeleton import dof_names_of, joint_kind
+
+    loads = [Load.held_mass(figure, f"{s}_palm", "grip", task.load_kg / 2) for s in SIDES] if task.load_kg > 0 else []
+    tau = joint_torques(figure, loads, fk=fk)
+    root = figure.root_segment()
+    flags = []
+    joints = list(_UPPER_JOINTS)
+    if root.endswith("_foot") or root.endswith("_toes"):
+        joints += _LEG_JOINTS
+        flags.append(f"legs: the whole body stands on the root foot ({root})")
+    else:
+        flags.append(f"legs not assessed: the figure is held at its root ({root}); root it at a foot for leg moments")
+    sexes = ["male", "female"] if task.sex == "both" else [task.sex]
+    rows: list[dict[str, Any]] = []
+    for jn in joints:
+        if jn not in figure.joints:
+            continue
+        j = figure.joint(jn)
+        sl = figure.joint_dof_slice(jn)
+        kind = joint_kind(jn)
+        for k, dname in enumerate(dof_names_of(j)):
+            t = float(tau[sl][k])
+            row: dict[str, Any] = {"joint": jn, "dof": dname, "moment_Nm": t,
+                                   "direction": "toward upper" if t >= 0 else "toward lower"}
+            for sex in sexes:
+                grid = _strength_grid(kind, dname, sex)[:, 1 if t >= 0 else 0]
+                row[f"{sex}_capable_pct"] = percent_capable(abs(t), grid)
+                row[f"{sex}_p50_strength_Nm"] = float(grid[list(P_GRID).index(50.0)])
+            rows.append(row)
+    score_key = {s: f"{s}_capable_pct" for s in sexes}
+    def order(r: dict[str, Any], s: str) -> tuple[float, float]:  # ties (at the 99 % clamp): highest share of p50
+        return r[score_key[s]], -abs(r["moment_Nm"]) / max(r[f"{s}_p50_strength_Nm"], 1e-9)
+
+    weakest = {s: min(rows, key=lambda r: order(r, s)) for s in sexes}
+    worst_sex = min(sexes, key=lambda s: weakest[s][score_key[s]])
+    w = weakest[worst_sex]
+    score = w[score_key[worst_sex]]
+    lv = 1 if score >= 99.0 else (2 if score >= 75.0 else 3)
+    text = {1: "almost everyone capable (>= 99 %)", 2: "most capable (75-99 %)",
+            3: "fewer than 75 % capable: redesign"}[lv]
+    ws = {"joints": rows, "sexes": sexes, "load_kg": task.load_kg,
+          "weakest": {s: {"joint": weakest[s]["joint"], "dof": weakest[s]["dof"],
+                          "capable_pct": weakest[s][score_key[s]]} for s in sexes}}
+    return Assessment("capable", score, lv, f"{text}; weakest {w['joint']} {w['dof']} ({worst_sex})", ws,
+                      {"trunk_flexion": posture.trunk_flexion,
+                       **{f"{s}_upper_arm_flexion": posture.arms[s].upper_arm_flexion for s in SIDES},
+                       **{f"{s}_elbow_flexion": posture.arms[s].elbow_flexion for s in SIDES}},
+                      "joint torques N·m per DOF (sign: + pushes toward the DOF's upper limit)", flags,
+                      w["joint"], unit="%")
+
+
+METHOD = register(Method("capable", "Percent capable (static strength)",
+                         "statics: jackpy.analysis.statics; strength: jackpy.body.strength (data/strength.csv)",
+                         VALIDITY, assess))
