@@ -5,7 +5,13 @@ that make it up **in proportion to their generated volumes** (uniform density, t
 report uses for the hand): e.g. the hand's 0.61 % over palm and 15 phalanges, the trunk's upper / mid /
 lower parts over their vertebral slabs. Segments that are one de Leva segment each (upper arm, thigh,
 shank) take de Leva's centre-of-mass position and radii of gyration; the others take their mesh's
-uniform-density centroid and inertia. Masses sum to body mass by construction.
+uniform-density centroid and inertia, and then every member of a multi-segment de Leva segment
+(forearm, hand, foot, head + neck, trunk) is moved along de Leva's endpoint axis so that the
+**combined** centre of mass lies at de Leva's position (``com_pct`` of the endpoint distance). Endpoints
+on the figure: forearm elbow -> wrist joint centres, hand wrist -> 3rd metacarpophalangeal joint
+(de Leva's 3rd metacarpale), foot heel -> toe tip, head vertex -> mid-gonion and trunk suprasternale ->
+mid-hip (the last two along the body axis, their lengths de Leva's mean lengths scaled by stature /
+de Leva's mean stature: 1.741 m men, 1.735 m women). Masses sum to body mass by construction.
 """
 
 from __future__ import annotations
@@ -34,6 +40,12 @@ GROUPS: dict[str, list[str]] = {
 }
 #: de Leva segments whose proximal and distal endpoints are these figure sites (segment, site) pairs
 ENDPOINTS = {"upper_arm": ("base", "elbow"), "thigh": ("base", "knee"), "shank": ("base", "ankle")}
+#: multi-segment de Leva segments: (first endpoint, second endpoint) as (segment, site) with {side}
+GROUP_ENDPOINTS = {"forearm": (("{side}_forearm", "base"), ("{side}_palm", "base")),
+                   "hand": (("{side}_palm", "base"), ("{side}_middle_1", "base")),
+                   "foot": (("{side}_foot", "heel"), ("{side}_toes", "tip"))}
+#: de Leva's (1996) sample mean statures (Zatsiorsky-Seluyanov subjects), m
+DE_LEVA_STATURE = {"male": 1.741, "female": 1.735}
 
 
 @cache
@@ -80,6 +92,40 @@ def assign_mass_properties(figure: Figure, sex: str, body_mass: float) -> None:
                 seg.inertia = inertia * seg.mass / vol
             if dl_name in ENDPOINTS:
                 _de_leva_segment(figure.segment(names[0]), ENDPOINTS[dl_name], table[dl_name])
+            elif dl_name in GROUP_ENDPOINTS:
+                a, b = ((seg.format(side=side), site) for seg, site in GROUP_ENDPOINTS[dl_name])
+                p0, p1 = figure.site_world(*a)[:3, 3], figure.site_world(*b)[:3, 3]
+                _place_group_com(figure, names, p0, p1, table[dl_name]["com_pct"])
+    stature_ratio = float(figure.site_world("head", "top")[1, 3] - _floor(figure)) / DE_LEVA_STATURE[sex]
+    top = figure.site_world("head", "top")[:3, 3]
+    head = table["head"]
+    _place_group_com(figure, [m.format(side="") for m in GROUPS["head"]], top,
+                     top - [0.0, head["length_mm"] * 1e-3 * stature_ratio, 0.0], head["com_pct"])
+    hip = figure.site_world("pelvis", "centre")[:3, 3]
+    trunk = table["trunk"]
+    members = GROUPS["upper_trunk"] + GROUPS["mid_trunk"] + GROUPS["lower_trunk"]
+    _place_group_com(figure, members, hip + [0.0, trunk["length_mm"] * 1e-3 * stature_ratio, 0.0], hip,
+                     trunk["com_pct"])
+    figure.topology_changed()  # the kinematics cache holds mass properties
+
+
+def _floor(figure: Figure) -> float:
+    return min(float(figure.site_world(f"{side}_foot", "heel")[1, 3]) for side in ("left", "right"))
+
+
+def _place_group_com(figure: Figure, names: list[str], p0: np.ndarray, p1: np.ndarray, com_pct: float) -> None:
+    """Move the centres of mass of segments ``names`` (all frames parallel to the world: zero pose) by one
+    common shift along ``p1 - p0`` so their combined centre of mass lies ``com_pct`` % of the way."""
+    world = figure.world_transforms()
+    masses = np.array([figure.segment(n).mass for n in names])
+    coms = np.array([world[n][:3, :3] @ figure.segment(n).com + world[n][:3, 3] for n in names])
+    current = masses @ coms / masses.sum()
+    axis = (p1 - p0) / np.linalg.norm(p1 - p0)
+    target = p0 + (p1 - p0) * com_pct / 100.0
+    shift = axis * float(np.dot(target - current, axis))
+    for n in names:
+        seg = figure.segment(n)
+        seg.com = seg.com + world[n][:3, :3].T @ shift
 
 
 def _de_leva_segment(seg: Segment, ends: tuple[str, str], row: dict[str, float]) -> None:
