@@ -167,7 +167,7 @@ def attach_groups(figure: Figure) -> None:
     for side, _ in SIDES:
         g = shoulder_group(side)
         theta_c = np.degrees(figure.joint(f"{side}_clavicle").displacement[1])
-        first, phi, theta_s = np.degrees(figure.joint(f"{side}_shoulder").displacement)
-        tau = first - (phi / 90.0 - 1.0) * theta_s
-        g.angles = np.radians([phi, theta_c / 0.2, tau])
+        first, phi, _theta_s = np.degrees(figure.joint(f"{side}_shoulder").displacement)
+        theta = theta_c / 0.2
+        g.angles = np.radians([phi, theta, first + theta])  # the driver's first angle is tau - theta
         figure.add_group(g)

@@ -2,7 +2,11 @@
 
 Group angles (radians): **elevation** ϕ (0 = arm hanging, π = straight up), **abduction** θ (0 = the arm
 in the body's lateral plane, +π/2 = forward) and **twist** τ (about the arm; positive = internal
-rotation, 0 = the default twist τ₀). The allocation to the clavicle (Otani, eqs 2.2-2.7, in degrees):
+rotation). **τ = 0 is the anatomical neutral rotation**: the upper arm's orientation is the pure swing
+(the shortest rotation) from the zero pose (hanging, palm to the thigh, thumb forward) to the arm
+direction, so a horizontal forward arm has the thumb up and a sideways arm has the palm down. With the
+allocation below this is exactly ``τ_book = τ - θ_c - τ₀`` against the book's twist (τ₀ = default twist),
+i.e. the shoulder's first member angle is ``τ - θ`` (checked by FK in tests/body/test_body_shoulder.py). The allocation to the clavicle (Otani, eqs 2.2-2.7, in degrees):
 
     ϕ_c = cos θ · β₁ + (1 - cos θ) · β₂ - 90,   θ_c = 0.2 θ,   ϕ_s = ϕ - ϕ_c,   θ_s = θ - θ_c
     β₁ = 0.2514 ϕ + 91.076 (ϕ ≤ 131.4) else -0.035 ϕ + 128.7
@@ -15,13 +19,15 @@ is world x_b = +z, y_b = -x, z_b = -y; the right arm mirrors the axes):
   elevates, then swings forward about the thorax vertical). **[proposal]**: the book's form 2.18 is in a
   clavicle site frame it only shows in a figure; this order makes the arm direction exactly (ϕ, θ).
 * shoulder ``R(z_b) * R(x_b) * R(z_b) * R(x_b)`` (2.21) with displacement
-  ``(τ + (ϕ/90 - 1) θ_s, ϕ, θ_s, -ϕ_c)`` (2.23): τ₀ = (ϕ/90) θ_s removes the twist that abduction brings.
+  ``(τ_book + (ϕ/90 - 1) θ_s, ϕ, θ_s, -ϕ_c)`` (2.23): τ₀ = (ϕ/90) θ_s removes the twist that abduction
+  brings; with the anatomical zero above the first angle is ``τ - θ``.
   A joint has at most 3 DOFs here, so 2.21 is the chain ``<side>_shoulder_tilt`` (``R(x_b)``, -ϕ_c, acting
   first) to the zero-mass ``<side>_shoulder_frame`` then ``<side>_shoulder`` (``R(z_b) * R(x_b) * R(z_b)``).
-  The driver's output order is clavicle (ϕ_c, θ_c), tilt (-ϕ_c), shoulder (τ + (ϕ/90 - 1) θ_s, ϕ, θ_s).
+  The driver's output order is clavicle (ϕ_c, θ_c), tilt (-ϕ_c), shoulder (τ - θ, ϕ, θ_s).
 
 Limits are globographic **[proposal from AAOS ranges]**: 0 ≤ ϕ ≤ 180°, -90° ≤ θ ≤ 135°, twist -90°
-(external) to 70° (internal), and two linear cuts ``A @ (ϕ, θ, τ) <= b``: behind the body elevation
+(external) to 70° (internal) about the anatomical neutral (AAOS 1965: external rotation 90, internal
+70), and two linear cuts ``A @ (ϕ, θ, τ) <= b``: behind the body elevation
 falls to 60° at θ = -90° (ϕ - 4/3 θ ≤ 180°), across the body to 150° at θ = 135° (ϕ + 2/3 θ ≤ 240°).
 """
 
@@ -62,7 +68,8 @@ def allocate_batch(phi_deg: np.ndarray, theta_deg: np.ndarray) -> tuple[np.ndarr
 
 
 def default_twist(phi_deg: float, theta_s_deg: float) -> float:
-    """τ₀ = (ϕ/90) θ_s, degrees (eq. 2.17 applied to the shoulder's share, as in 2.23)."""
+    """The book's default twist τ₀ = (ϕ/90) θ_s, degrees (eq. 2.17 applied to the shoulder's share, as
+    in 2.23); the group's anatomical twist is ``τ = τ_book + θ_c + τ₀``."""
     return phi_deg / 90.0 * theta_s_deg
 
 
@@ -72,16 +79,14 @@ class ShoulderDriver:
     def __call__(self, theta: np.ndarray) -> np.ndarray:
         phi, th, tau = np.degrees(np.asarray(theta, dtype=float))
         phi_c, theta_c, _, theta_s = allocate(phi, th)
-        first = tau + default_twist(phi, theta_s) - theta_s
-        return np.radians([phi_c, theta_c, -phi_c, first, phi, theta_s])
+        return np.radians([phi_c, theta_c, -phi_c, tau - th, phi, theta_s])
 
     def batch(self, thetas: np.ndarray) -> np.ndarray:
         """(N, 3) group angles -> (N, 6) member displacements, row ``i`` equal to ``self(thetas[i])``."""
         d = np.degrees(np.atleast_2d(np.asarray(thetas, dtype=float)))
         phi, th, tau = d[:, 0], d[:, 1], d[:, 2]
         phi_c, theta_c, _, theta_s = allocate_batch(phi, th)
-        first = tau + default_twist(phi, theta_s) - theta_s
-        return np.radians(np.stack([phi_c, theta_c, -phi_c, first, phi, theta_s], axis=1))
+        return np.radians(np.stack([phi_c, theta_c, -phi_c, tau - th, phi, theta_s], axis=1))
 
     def jacobian(self, theta: np.ndarray, h: float = 1e-7) -> np.ndarray:
         theta = np.asarray(theta, dtype=float)
