@@ -245,10 +245,16 @@ def parse_methods(text: str) -> list[str]:
     return names
 
 
-def band(x: float, edges: tuple[float, ...]) -> int:
-    """1 + how many of the ascending ``edges`` lie strictly below ``x``: bands are (lower, upper], so a
-    score steps just above each edge."""
-    return 1 + sum(1 for e in edges if x > e)
+#: degrees: measurement noise ignored at a band edge
+EDGE_TOLERANCE = 1e-6
+
+
+def band(x: float, edges: tuple[float, ...], at_edge: bool) -> int:
+    """1 + how many of the ascending ``edges`` ``x`` has reached: with ``at_edge`` the score steps at
+    each edge (bands [lower, upper): RULA's "20-45°, 45-90°, 90°+"), without it just above (bands
+    (lower, upper]: REBA's "> 20°"). Measurements within :data:`EDGE_TOLERANCE` of an edge count as on
+    it (a posed 60° measures 59.99999999°)."""
+    return 1 + sum(1 for e in edges if (x >= e - EDGE_TOLERANCE if at_edge else x > e + EDGE_TOLERANCE))
 
 
 def adjustment(task: Task, name: str, measured: bool, used: dict[str, Any]) -> bool:

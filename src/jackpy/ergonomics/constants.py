@@ -62,16 +62,17 @@ OWAS_TWIST_DEG = 20.0
 OWAS_KNEE_BENT_DEG = 30.0
 
 # ---------------------------------------------------------------------------------------------
-# RULA (McAtamney & Corlett 1993). Bands are (lower, upper]: a score steps just above its angle.
+# RULA (McAtamney & Corlett 1993). Bands are [lower, upper) ("20-45°, 45-90°, 90°+"): a score steps
+# at its angle. REBA's are (lower, upper] ("> 20°"): a score steps just above it.
 # ---------------------------------------------------------------------------------------------
-RULA_UPPER_ARM_EXTENSION_DEG = 20.0           # > 20° extension: 2
-RULA_UPPER_ARM_FLEXION_DEG = (20.0, 45.0, 90.0)  # ≤20: 1, 20-45: 2, 45-90: 3, >90: 4
+RULA_UPPER_ARM_EXTENSION_DEG = 20.0           # 20°+ extension: 2
+RULA_UPPER_ARM_FLEXION_DEG = (20.0, 45.0, 90.0)  # <20: 1, 20-45: 2, 45-90: 3, 90+: 4
 RULA_LOWER_ARM_DEG = (60.0, 100.0)            # 60-100° flexion: 1, else 2
-RULA_WRIST_DEG = 15.0                         # neutral: 1, ≤15: 2, >15: 3
-RULA_NECK_DEG = (10.0, 20.0)                  # 0-10: 1, 10-20: 2, >20: 3, extension: 4
-RULA_TRUNK_DEG = (20.0, 60.0)                 # upright: 1, 0-20: 2, 20-60: 3, >60: 4
+RULA_WRIST_DEG = 15.0                         # neutral: 1, 0-15: 2, 15+: 3
+RULA_NECK_DEG = (10.0, 20.0)                  # 0-10: 1, 10-20: 2, 20+: 3, extension: 4
+RULA_TRUNK_DEG = (20.0, 60.0)                 # upright: 1, 0-20: 2, 20-60: 3, 60+: 4
 #: force/load score: < 2 kg intermittent 0; 2-10 kg intermittent 1; 2-10 kg static or repeated,
-#: or > 10 kg intermittent 2; > 10 kg static or repeated, or shock 3
+#: or 10 kg+ intermittent 2; 10 kg+ static or repeated, or shock 3
 RULA_LOAD_KG = (2.0, 10.0)
 
 #: Table A [upper arm 1-6][lower arm 1-3][wrist 1-4][wrist twist 1-2]

@@ -24,7 +24,7 @@ def back_code(bent: bool, twisted: bool) -> int:
 
 
 def load_code(kg: float) -> int:
-    return band(kg, C.OWAS_LOAD_KG)
+    return band(kg, C.OWAS_LOAD_KG, False)
 
 
 def legs_code(p: Posture, task: Task) -> int:

@@ -44,7 +44,8 @@ class ArmAngles:
     """One arm (degrees).
 
     In the thorax frame: ``upper_arm_flexion`` is the upper arm's angle from hanging in the thorax's
-    sagittal plane (its projection on it; + forward, - extension behind the trunk);
+    sagittal plane (its projection on it; + forward, - extension behind the trunk; in (-90, 270], 180 =
+    straight up);
     ``upper_arm_abduction`` the angle of the upper arm out of that plane (+ away from the body);
     ``shoulder_elevation`` the angle of the clavicle (sterno-clavicular joint to shoulder joint centre)
     above the thorax's transverse plane; ``forearm_out`` the forearm's angle out of the sagittal
@@ -156,6 +157,12 @@ def _unit(v: np.ndarray) -> np.ndarray:
     return v / np.linalg.norm(v)
 
 
+def _flexion_range(a: float) -> float:
+    """Arm flexion in (-90, 270]: an arm straight up is 180° (not -180°); the shoulder cannot extend
+    past 90° behind the trunk."""
+    return a + 360.0 if a <= -90.0 else a
+
+
 def _finger_flexion(fr: _Frames, side: str) -> float:
     """Mean over the four fingers of the angle between the palm's long axis and the middle
     phalanx (MCP + PIP flexion together), degrees."""
@@ -183,7 +190,7 @@ def _arm(fr: _Frames, side: str, thorax: np.ndarray) -> ArmAngles:
     mid = thorax.T @ (wr - fr.p("t1"))
     un, wn = np.linalg.norm(u), np.linalg.norm(w)
     return ArmAngles(
-        upper_arm_flexion=_deg(np.arctan2(u[2], -u[1])),
+        upper_arm_flexion=_flexion_range(_deg(np.arctan2(u[2], -u[1]))),
         upper_arm_abduction=_deg(np.arcsin(np.clip(s * u[0] / un, -1.0, 1.0))),
         shoulder_elevation=_deg(np.arcsin(np.clip(c[1] / np.linalg.norm(c), -1.0, 1.0))),
         elbow_flexion=_angle(u, w),

@@ -28,7 +28,7 @@ def trunk_score(flexion: float) -> int:
     lo, hi = C.REBA_TRUNK_DEG
     if flexion < 0:
         return 2 if -flexion <= lo else 3
-    return band(flexion, C.REBA_TRUNK_DEG) + 1
+    return band(flexion, C.REBA_TRUNK_DEG, False) + 1
 
 
 def neck_score(flexion: float) -> int:
@@ -38,12 +38,12 @@ def neck_score(flexion: float) -> int:
 def upper_arm_score(flexion: float) -> int:
     if flexion < -C.REBA_UPPER_ARM_EXTENSION_DEG:
         return 2
-    return band(flexion, C.REBA_UPPER_ARM_FLEXION_DEG)
+    return band(flexion, C.REBA_UPPER_ARM_FLEXION_DEG, False)
 
 
 def lower_arm_score(elbow_flexion: float) -> int:
     lo, hi = C.REBA_LOWER_ARM_DEG
-    return 1 if lo < elbow_flexion <= hi else 2
+    return 1 if lo <= elbow_flexion <= hi else 2
 
 
 def wrist_score(flexion: float) -> int:
@@ -97,7 +97,7 @@ def assess(figure: Figure, task: Task, posture: Posture, fk: FKResult | None = N
     bilateral = task.seated or task.walking or len(bearing) == 2
     legs = 1 if adjustment(task, "bilateral_weight_bearing", bilateral, adj) else 2
     knee = max((p.knee_flexion[s] for s in (bearing or ("left", "right"))), default=0.0)
-    knee_add = 0 if task.seated else band(knee, C.REBA_KNEE_DEG) - 1
+    knee_add = 0 if task.seated else band(knee, C.REBA_KNEE_DEG, False) - 1
     legs += knee_add
     table_a = int(C.REBA_TABLE_A[neck - 1, trunk - 1, legs - 1])
     load = load_score(task)

@@ -25,25 +25,25 @@ VALIDITY = ("standing or seated static postures; RULA scores the posture held fo
 
 def upper_arm_score(flexion: float) -> int:
     """Upper arm base score 1-4 from its flexion (degrees, + forward)."""
-    if flexion < -C.RULA_UPPER_ARM_EXTENSION_DEG:
+    if flexion <= -C.RULA_UPPER_ARM_EXTENSION_DEG:
         return 2
-    return band(flexion, C.RULA_UPPER_ARM_FLEXION_DEG)
+    return band(flexion, C.RULA_UPPER_ARM_FLEXION_DEG, True)
 
 
 def lower_arm_score(elbow_flexion: float) -> int:
     lo, hi = C.RULA_LOWER_ARM_DEG
-    return 1 if lo < elbow_flexion <= hi else 2
+    return 1 if lo <= elbow_flexion < hi else 2
 
 
 def wrist_score(flexion: float) -> int:
     a = abs(flexion)
-    return 1 if a <= C.NEUTRAL_BAND_DEG else (2 if a <= C.RULA_WRIST_DEG else 3)
+    return 1 if a <= C.NEUTRAL_BAND_DEG else (2 if a < C.RULA_WRIST_DEG else 3)
 
 
 def neck_score(flexion: float) -> int:
     if flexion < -C.NEUTRAL_BAND_DEG:
         return 4
-    return band(flexion, C.RULA_NECK_DEG)
+    return band(flexion, C.RULA_NECK_DEG, True)
 
 
 def trunk_score(flexion: float) -> int:
@@ -51,16 +51,16 @@ def trunk_score(flexion: float) -> int:
         return 1
     if flexion < 0:
         return 2  # extension: RULA gives no band; scored as the 0-20° band (flagged)
-    return band(flexion, C.RULA_TRUNK_DEG) + 1
+    return band(flexion, C.RULA_TRUNK_DEG, True) + 1
 
 
 def load_score(task: Task) -> int:
     kg = task.load_kg
     lo, hi = C.RULA_LOAD_KG
     held = task.static or task.repeated
-    if task.shock or (kg > hi and held):
+    if task.shock or (kg >= hi and held):
         return 3
-    if kg >= lo and held or kg > hi:
+    if kg >= lo and held or kg >= hi:
         return 2
     if kg >= lo:
         return 1
