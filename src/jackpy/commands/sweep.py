@@ -1,0 +1,81 @@
+"""``jackpy sweep``: run a study over a Monte Carlo population or a manikin family, on a local
+process pool or a Dask cluster; writes the per-body table, the accommodation table and a report."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+
+def register(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("sweep", help="population accommodation: run a study (reach, view, clearance, strength, "
+                                     "ergonomics) over many bodies; see docs/population.md")
+    p.add_argument("scene", metavar="SCENE", help="workplace scene file (JSON)")
+    p.add_argument("--study", required=True, metavar="STUDY.json", help="the criteria (docs/population.md)")
+    who = p.add_mutually_exclusive_group()
+    who.add_argument("--n", type=int, default=None, help="Monte Carlo bodies (default 2000)")
+    who.add_argument("--family", default=None, metavar="SHARE",
+                     help="a manikin family holding SHARE of each sex, e.g. 90%% (boundary and centre cases)")
+    p.add_argument("--family-dims", default="stature,weight",
+                   help="family dimensions, comma separated (default stature,weight; 3 or more: PCA)")
+    p.add_argument("--components", type=int, default=None, help="principal components of a PCA family (default 3)")
+    p.add_argument("--sex-mix", type=float, default=0.5, help="share of women, 0..1 (default 0.5)")
+    p.add_argument("--seed", type=int, default=0, help="Monte Carlo seed (default 0)")
+    p.add_argument("--workers", type=int, default=None, help="local worker processes (default: every core)")
+    p.add_argument("--scheduler", default=None, metavar="ADDR", help="Dask scheduler, e.g. tcp://HOST:8786")
+    p.add_argument("--resume", action="store_true", help="finish the interrupted sweep in OUT")
+    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    p.add_argument("-o", "--output", required=True, metavar="OUT", help="output folder")
+    p.set_defaults(func=run)
+
+
+def parse_share(text: str) -> float:
+    """``90%`` or ``0.9`` -> 0.9."""
+    from jackpy.errors import JackpyError
+
+    t = text.strip()
+    try:
+        v = float(t[:-1]) / 100.0 if t.endswith("%") else float(t)
+    except ValueError:
+        raise JackpyError(f"bad --family {text!r}: write a share such as 90% or 0.9") from None
+    if not 0.0 < v < 1.0:
+        raise JackpyError(f"bad --family {text!r}: the share must be between 0 and 100 % (exclusive)")
+    return v
+
+
+def run(args: argparse.Namespace) -> int:
+    from jackpy.errors import JackpyError
+    from jackpy.population.run import population_bodies, sweep
+
+    if not 0.0 <= args.sex_mix <= 1.0:
+        raise JackpyError(f"--sex-mix must be between 0 and 1, not {args.sex_mix}")
+    if args.n is not None and args.n < 1:
+        raise JackpyError(f"--n must be at least 1, not {args.n}")
+    if args.workers is not None and args.workers < 0:
+        raise JackpyError(f"--workers must be 0 or more, not {args.workers}")
+    bodies = None
+    description: dict = {}
+    if not args.resume:
+        dims = [d.strip() for d in args.family_dims.split(",") if d.strip()]
+        share = parse_share(args.family) if args.family is not None else None
+        bodies = population_bodies(args.n, share, args.sex_mix, args.seed, dims, args.components)
+        description = {"population": {"n": len(bodies), "family": share, "family_dims": dims if share else None,
+                                      "sex_mix": args.sex_mix, "seed": args.seed}}
+    try:
+        result, table = sweep(args.scene, args.study, bodies, args.output, workers=args.workers,
+                              scheduler=args.scheduler, resume=args.resume, progress=not args.no_progress,
+                              description=description)
+    except KeyboardInterrupt:
+        from jackpy.population.evaluate import columns
+        from jackpy.population.journal import Journal
+        from jackpy.population.study import load_study
+
+        kept = len(Journal(args.output).finished(columns(load_study(args.study))))
+        print(f"\njackpy: interrupted: {kept} finished rows kept in {args.output}; finish with --resume",
+              file=sys.stderr)
+        return 130
+    for a in table:
+        binding = f", binding {a.binding_dimension} ({a.fails_when} fail)" if a.binding_dimension else ""
+        print(f"{a.criterion}: {100 * a.share:.1f} % ({a.passed}/{a.bodies}){binding}")
+    print(f"{result.evaluated} bodies in {result.seconds:.1f} s; report: {args.output}/report.html")
+    return 0
