@@ -84,11 +84,11 @@ def _set(loop: "BehaviorLoop", env: "Environment", control: str, value: Any, rev
         elif value == "release":
             m.release_hand(loop, arg)
         elif value == "hold":
-            m.hold_hand(loop, arg)
+            _hold_hand(loop, arg, None)
         elif isinstance(value, str) and value.startswith("hold:"):
             from jackpy.motion.base import FrameRef
 
-            m.hold_hand(loop, arg, FrameRef(env, value[5:]))
+            _hold_hand(loop, arg, FrameRef(env, value[5:]))
         else:
             raise ValueError(f"hand control must be 'hold', 'hold:OBJECT' or 'release', not {value!r}")
     elif base == "head":
@@ -109,6 +109,16 @@ def _set(loop: "BehaviorLoop", env: "Environment", control: str, value: Any, rev
             b.enabled = bool(value)
         else:
             setattr(b.params, prm, value)
+
+
+def _hold_hand(loop: "BehaviorLoop", side: str, frame: Any) -> None:
+    """Hold hand ``side``'s palm where it is: in the world, or relative to ``frame`` (with a
+    ``pose``; the hand then follows it)."""
+    hs = loop.state.hands[side]
+    palm = loop.figure.site_world(*loop.anatomy.hands[side].palm)
+    hs.goal, hs.orient, hs.rules, hs.lean = palm.copy(), True, False, False
+    hs.local = frame
+    hs.local_offset = None if frame is None else np.linalg.inv(frame.pose) @ palm
 
 
 class _Carried:
