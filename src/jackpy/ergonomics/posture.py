@@ -6,8 +6,8 @@ displacements, so it works for any pose the IK, behaviors or a motion produce.
 Frames (the standard human of :func:`jackpy.body.make_human`; zero pose: every segment frame parallel
 to the world, x to the figure's left, y up, z forward):
 
-* **body frame**: up = world +y (against gravity), forward = the pelvis's z axis projected on the
-  horizontal plane, left = up x forward.
+* **body frame**: up = world +y (against gravity), left = the pelvis's x axis (the hip axis)
+  projected on the horizontal plane, forward = left x up.
 * **thorax frame**: the world rotation of segment ``t1`` (the upper thoracic vertebra that carries the
   clavicles and the neck).
 * **forearm frame**: segment ``<side>_forearm_distal`` (after the forearm's twist joints).
@@ -107,7 +107,7 @@ class Posture:
     forward: np.ndarray
     left: np.ndarray
 
-    FRAME = ("body frame: up = world +y, forward = pelvis z projected on the floor; thorax frame: segment t1; "
+    FRAME = ("body frame: up = world +y, left = pelvis x (hip axis) projected on the floor; thorax frame: segment t1; "
              "forearm frame: <side>_forearm_distal; degrees")
 
     def feet_bearing(self) -> list[str]:
@@ -209,11 +209,11 @@ def measure(figure: Figure, fk: FKResult | None = None) -> Posture:
     fr = _Frames(figure, fk)
     up = np.array([0.0, 1.0, 0.0])
     pelvis = fr.T("pelvis")[:3, :3]
-    fwd = pelvis[:, 2] - pelvis[1, 2] * up
-    if np.linalg.norm(fwd) < 1e-6:  # pelvis z vertical: fall back on its y axis
-        fwd = -pelvis[:, 1] + pelvis[1, 1] * up
-    fwd = _unit(fwd)
-    left = np.cross(up, fwd)
+    left = pelvis[:, 0] - pelvis[1, 0] * up  # the hip axis stays level however far the pelvis pitches
+    if np.linalg.norm(left) < 1e-6:  # pelvis rolled on its side: fall back on its forward axis
+        left = np.cross(up, pelvis[:, 2])
+    left = _unit(left)
+    fwd = np.cross(left, up)
     # trunk
     trunk = fr.p("neck") - fr.p("l5")
     tl = np.linalg.norm(trunk)
