@@ -12,7 +12,7 @@ from jackpy.devices.flock.driver import FlockDriver, Sample
 from jackpy.devices.flock.simulator import FlockSimulator
 from jackpy.errors import DeviceError
 
-FAST = dict(rts_reset=None, autoconfig_wait=0.05, data_timeout=1.0, reconnect_interval=0.2)
+FAST = dict(rts_reset=None, autoconfig_wait=0.08, data_timeout=1.0, reconnect_interval=0.2)
 
 
 def collect(driver: FlockDriver) -> dict[int, list[Sample]]:
@@ -49,15 +49,15 @@ def assert_same_as_sent(sim: FlockSimulator, got: dict[int, list[Sample]]) -> in
     return total
 
 
-def test_group_mode_stream_4_birds_100hz_10s():
+def test_group_mode_stream_4_birds_100hz_3s():
     with FlockSimulator(4, autoconfig_delay=0.05, log=True) as sim:
         drv = FlockDriver(sim.paths[0], 4, measurement_rate=100.0, **FAST)
         got = collect(drv)
         drv.start()
-        time.sleep(10.0)
+        time.sleep(3.0)
         finish(sim, drv)
         n = assert_same_as_sent(sim, got)
-    assert n >= 4 * 100 * 9  # ~100 Hz per bird for 10 s (generous: a busy CI box may lag)
+    assert n >= 4 * 100 * 2.7  # ~100 Hz per bird for 3 s (generous: a busy CI box may lag)
     assert drv.stats.dropped == 0 and drv.stats.skipped_bytes == 0
     assert drv.birds == [1, 2, 3, 4] and drv.info["revision"] == "3.67"
 
@@ -75,16 +75,16 @@ def test_one_port_per_bird_stream():
     assert got[2][-1].record.format is p.Format.POSITION_QUATERNION
 
 
-def test_point_mode_group_4_birds_100hz_10s():
+def test_point_mode_group_4_birds_100hz_3s():
     with FlockSimulator(4, autoconfig_delay=0.05, log=True) as sim:
         drv = FlockDriver(sim.paths[0], 4, mode="point", point_rate=100.0, **FAST)
         got = collect(drv)
         drv.start()
-        time.sleep(10.0)
+        time.sleep(3.0)
         finish(sim, drv)
         n = assert_same_as_sent(sim, got)
-    assert n >= 4 * 100 * 7  # one POINT request per 10 ms answered by all 4 birds (a busy box may lag)
-    assert all(len(got[b]) >= 700 for b in (1, 2, 3, 4))
+    assert n >= 4 * 100 * 2.1  # one POINT request per 10 ms answered by all 4 birds (a busy box may lag)
+    assert all(len(got[b]) >= 210 for b in (1, 2, 3, 4))
     assert drv.stats.dropped == 0 and drv.stats.skipped_bytes == 0
 
 
@@ -95,27 +95,6 @@ def test_standalone_over_socket_url():
         with drv:
             s = drv.store.wait(0, after_seq=5, timeout=5.0)
         assert s is not None and s.record.format is p.Format.MATRIX and s.record.address == 0
-
-
-def test_faults_resync_within_one_record_and_count_drops():
-    with FlockSimulator(4, autoconfig_delay=0.05, log=True) as sim:
-        drv = FlockDriver(sim.paths[0], 4, **FAST)
-        got = collect(drv)
-        with drv:
-            wait_until(lambda: drv.stats.records > 40)
-            sim.drop_bytes(5)
-            wait_until(lambda: drv.stats.dropped == 5)
-            sim.inject_garbage(bytes([0x00, 0x13, 0x7F]))  # no phasing bit: skipped while hunting
-            wait_until(lambda: drv.stats.skipped_bytes == 3)
-            sim.inject_garbage(bytes([0x85, 0x01]))  # a false record start: one more drop
-            wait_until(lambda: drv.stats.dropped == 6)
-            before = drv.stats.records
-            wait_until(lambda: drv.stats.records > before + 40)
-            finish(sim, drv)
-        assert drv.stats.dropped == 6 and drv.stats.skipped_bytes == 3
-        # every intact record, including the one right after each fault, came out
-        assert_same_as_sent(sim, got)
-        assert sum(not s.intact for v in sim.sent.values() for s in v) == 5
 
 
 def test_device_error_is_read_and_reported():

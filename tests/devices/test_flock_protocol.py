@@ -83,15 +83,16 @@ def test_e7_group_point_mixed_formats():
 
 def test_e8_resync_after_lost_byte():
     dec = StreamDecoder({0: BirdLayout(Format.POSITION)})
-    recs = dec.feed(H("E4 11 00 1C 6E D5 12 00 00 1C 6E"))
-    assert len(recs) == 1 and dec.dropped == 1
+    assert dec.feed(H("E4 11 00 1C 6E D5 12 00 00 1C 6E")) == []  # B follows a fault: wait for C
+    recs = dec.feed(H("80"))  # the next record starts: B is confirmed
+    assert len(recs) == 1 and (dec.dropped, dec.skipped_bytes) == (1, 0)
     assert np.allclose(recs[0].position, (10.498535, 0, -10.001953), atol=1e-6)
 
 
 def test_e8_byte_at_a_time_gives_the_same():
     dec = StreamDecoder({0: BirdLayout(Format.POSITION)})
-    recs = [r for b in H("E4 11 00 1C 6E D5 12 00 00 1C 6E") for r in dec.feed(bytes([b]))]
-    assert len(recs) == 1 and dec.dropped == 1
+    recs = [r for b in H("E4 11 00 1C 6E D5 12 00 00 1C 6E 80") for r in dec.feed(bytes([b]))]
+    assert len(recs) == 1 and (dec.dropped, dec.skipped_bytes) == (1, 0)
 
 
 def test_e9_button_and_group_trailers():
@@ -188,3 +189,86 @@ def test_fuzz_decoder_never_raises(junk, group, chunk):
     assert recs and recs[-1].words == p.make_record(Format.POSITION, (1, 2, 3)).words
     for r in recs:
         assert r.address in (1, 2) and len(r.words) == r.format.words
+
+
+LONG_FORMATS = [Format.POSITION_ANGLES, Format.MATRIX, Format.POSITION_MATRIX, Format.POSITION_QUATERNION]
+
+
+def _faulty_stream(rng: np.random.Generator, layouts: dict[int, BirdLayout], group: bool, fault: str):
+    """Cycles of records with isolated faults: one byte lost from a record (never two damaged
+    records in a row), or a garbage burst between records (never two bursts around one record).
+    Returns (bytes, intact records, lost records, garbage bytes)."""
+    out, intact, lost, garbage = bytearray(), [], 0, 0
+    last_damaged = last_garbage = False
+    addrs = sorted(layouts)
+    for cycle in range(40):
+        for a in addrs:
+            lay = layouts[a]
+            rec = p.make_record(lay.format, rng.uniform(-30, 30, 3), rng.uniform(-80, 80, 3),
+                                scale=lay.scale, address=a)
+            data = p.encode_record(rec, group=group)
+            tail = cycle >= 38  # two clean cycles at the end settle the last gap
+            if fault == "drop" and not tail and not last_damaged and rng.random() < 0.15:
+                k = int(rng.integers(len(data)))
+                out += data[:k] + data[k + 1:]
+                lost += 1
+                last_damaged = True
+                continue
+            last_damaged = False
+            burst_here = fault == "garbage" and not tail and cycle > 0 and not last_garbage \
+                and rng.random() < 0.15
+            if burst_here:
+                burst = rng.integers(0, 256, int(rng.integers(1, 40)), dtype=np.uint8).tobytes()
+                out += burst
+                garbage += len(burst)
+            last_garbage = burst_here
+            out += data
+            intact.append(rec.words)
+    return bytes(out), intact, lost, garbage
+
+
+@pytest.mark.parametrize("fault", ["drop", "garbage"])
+def test_decoder_counts_lost_records_and_stray_bytes_exactly(fault):
+    """150 random streams (1..5 birds, mixed formats, random read sizes): the records lost and
+    the garbage bytes are counted exactly, and every record delivered is one that was sent."""
+    rng = np.random.default_rng(2026)
+    for trial in range(150):
+        nbirds = int(rng.integers(1, 6))
+        group = nbirds > 1 or bool(rng.integers(2))
+        fmts = LONG_FORMATS if fault == "garbage" else list(Format)  # see the decoder's docstring
+        layouts = {a: BirdLayout(fmts[int(rng.integers(len(fmts)))], 36.0)
+                   for a in (range(1, nbirds + 1) if group else [0])}
+        data, intact, lost, garbage = _faulty_stream(rng, layouts, group, fault)
+        dec = StreamDecoder(layouts, group=group)
+        got, k = [], 0
+        while k < len(data):
+            step = int(rng.integers(1, 80))
+            got += dec.feed(data[k:k + step])
+            k += step
+        assert [r.words for r in got] == intact, trial
+        assert (dec.dropped, dec.skipped_bytes) == (lost, garbage), trial
+
+
+def test_record_that_lost_its_phasing_byte_is_one_lost_record():
+    """Issue 22: a group record without its first byte was counted as 14 skipped bytes."""
+    layouts = {2: BirdLayout(Format.POSITION_QUATERNION), 3: BirdLayout(Format.POSITION_QUATERNION)}
+    recs = [p.encode_record(p.make_record(Format.POSITION_QUATERNION, (i, 2, 3), address=a), group=True)
+            for i in range(3) for a in (2, 3)]
+    dec = StreamDecoder(layouts, group=True)
+    out = dec.feed(b"".join(recs[:3]) + recs[3][1:] + b"".join(recs[4:]))
+    assert len(out) == 5 and (dec.dropped, dec.skipped_bytes) == (1, 0)
+    dec = StreamDecoder({0: BirdLayout(Format.POSITION)})
+    one = [p.encode_record(p.make_record(Format.POSITION, (i, 0, 0))) for i in range(4)]
+    out = dec.feed(one[0] + one[1][1:] + one[2] + one[3])
+    assert len(out) == 3 and (dec.dropped, dec.skipped_bytes) == (1, 0)
+
+
+def test_false_record_starts_in_garbage_are_stray_bytes_not_lost_records():
+    """Issue 22: garbage bursts were counted as lost records (245 reported, 0 lost)."""
+    layouts = {1: BirdLayout(), 2: BirdLayout()}
+    recs = [p.encode_record(p.make_record(Format.POSITION_ANGLES, (i, 1, 1), address=a), group=True)
+            for i in range(3) for a in (1, 2)]
+    junk = bytes([0x85, 0x01, 0x90, 0x91, 0x02, 0xFF])
+    dec = StreamDecoder(layouts, group=True)
+    out = dec.feed(recs[0] + junk + b"".join(recs[1:]))
+    assert len(out) == 6 and (dec.dropped, dec.skipped_bytes) == (0, len(junk))

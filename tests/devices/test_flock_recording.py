@@ -11,7 +11,7 @@ import pytest
 from jackpy.devices.flock.driver import Sample
 from jackpy.devices.flock.protocol import Format, make_record
 from jackpy.devices.recording import Recorder, read_recording, replay
-from jackpy.errors import ParseError
+from jackpy.errors import DeviceError, ParseError
 
 
 def samples(n_frames: int = 20, birds=(1, 2)):
@@ -64,3 +64,23 @@ def test_malformed_recordings(tmp_path):
     with pytest.raises(ParseError, match=":2:"):
         read_recording(path)
     assert not os.path.exists(tmp_path / "bad.jsonl.tmp")
+
+
+def test_default_recorder_hands_samples_over_within_a_quarter_second(tmp_path):
+    path = tmp_path / "rec.jsonl"
+    r = Recorder(path)
+    for s in samples(3):
+        r.add(s)
+    time.sleep(0.45)  # the flusher thread: no sample came after these, and no close
+    assert len(read_recording(path).samples) == 6
+    r.close()
+    with pytest.raises(DeviceError, match="flush interval"):
+        Recorder(tmp_path / "x.jsonl", flush_interval=2.0)
+
+
+def test_header_only_recording_is_empty(tmp_path):
+    path = tmp_path / "empty.jsonl"
+    Recorder(path, meta={"birds": 1}).close()
+    rec = read_recording(path)
+    assert rec.samples == [] and rec.frames() == [] and rec.duration == 0.0
+    assert list(replay(rec, speed=0)) == []

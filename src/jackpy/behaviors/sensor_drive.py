@@ -371,12 +371,13 @@ def replay_into(drive: SensorDrive, recording: Recording, speed: float = 0.0, ev
     keep the drive's calibration. ``speed`` 0 drives every ``every``-th frame as fast as the solver
     goes (frame by frame); ``speed`` > 0 runs against the clock (× speed) and, like a live
     session, always takes the newest frame due, skipping those the solver had no time for.
+    A recording without samples yields nothing.
     """
-    frames = recording.frames()
-    if not frames:
-        raise DeviceError("the recording holds no samples")
     if every < 1:
         raise DeviceError("every must be >= 1")
+    frames = recording.frames()
+    if not frames:  # a header and no samples: nothing to drive
+        return
     # sequence numbers per bird follow the frame index, so skipped frames are counted
     seqd = [{b: Sample(b, s.record, s.time, k) for b, s in fr.items()} for k, fr in enumerate(frames)]
     merged: list[dict[int, Sample]] = []

@@ -14,6 +14,8 @@ from jackpy.errors import DeviceError
 def register(sub: argparse._SubParsersAction) -> None:
     s = sub.add_parser("flock-sim", help="run a simulated Flock of Birds on a pseudo-terminal")
     s.add_argument("--birds", type=int, default=4, help="number of sensor birds (1 = standalone unit)")
+    s.add_argument("--erc", action="store_true",
+                   help="an Extended Range Controller at address 1, the sensor birds at 2..N+1 (144 in scale)")
     s.add_argument("--multi-port", action="store_true", help="one pty per bird instead of one shared port")
     s.add_argument("--rate", type=float, default=103.3, help="measurement rate in Hz (default 103.3)")
     s.add_argument("--link", metavar="PATH", help="also make PATH a stable symlink to the pty (PATH0.. with --multi-port)")
@@ -28,7 +30,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 
     p = sub.add_parser("flock-probe", help="connect to a Flock of Birds, print its identity and samples")
     p.add_argument("port", help="serial port, pty path or pyserial URL (socket://host:port)")
-    p.add_argument("--birds", type=int, default=1, help="sensor birds on this one port")
+    p.add_argument("--birds", type=int, default=1, help="sensor birds on this one port (an ERC is not counted)")
     p.add_argument("--ports", nargs="+", metavar="PORT", help="more ports: one port per bird")
     p.add_argument("--format", default="position_angles", help="record format (position_angles, pos_quat ...)")
     p.add_argument("--mode", choices=("stream", "point"), default="stream")
@@ -72,7 +74,7 @@ def run_sim(args: argparse.Namespace) -> int:
     if args.motion:
         motion = read_recording(args.motion).pose_at
     sim = FlockSimulator(args.birds, multi_port=args.multi_port, rate=args.rate, motion=motion,
-                         link=args.link, tcp_port=args.tcp)
+                         link=args.link, tcp_port=args.tcp, erc=args.erc)
     if args.error:
         sim.set_error(args.error)
     sim.start()
@@ -126,7 +128,8 @@ def run_probe(args: argparse.Namespace) -> int:
     driver.start()
     try:
         print(f"{driver.info.get('model', '?')} revision {driver.info.get('revision', '?')}, "
-              f"birds {driver.birds}, {args.mode} mode", flush=True)
+              f"birds {driver.birds}{', with an Extended Range Controller' if driver.info.get('erc') == 'yes' else ''}, "
+              f"{args.mode} mode", flush=True)
         for code, text in driver.device_errors:
             print(f"device {text}", flush=True)
         t0 = time.monotonic()
@@ -141,7 +144,7 @@ def run_probe(args: argparse.Namespace) -> int:
         if recorder:
             recorder.close()
     st = driver.stats
-    print(f"{st.records} records, {st.dropped} dropped, {st.skipped_bytes} bytes skipped, "
+    print(f"{st.records} records, {st.dropped} records lost, {st.skipped_bytes} stray bytes skipped, "
           f"{st.disconnects} disconnects", flush=True)
     return 0
 
@@ -152,8 +155,12 @@ def run_replay(args: argparse.Namespace) -> int:
     if args.speed < 0:
         raise DeviceError("--speed must be >= 0")
     rec = read_recording(args.file)
-    if not rec.samples:
-        raise DeviceError(f"{args.file}: the recording holds no samples")
+    if not rec.samples:  # e.g. stopped before the first sample: an empty recording, not an error
+        skipped = [opt for opt, v in (("--out", getattr(args, "out", None)), ("--png", getattr(args, "png", None)))
+                   if v]
+        print(f"note: {args.file} holds a header and no samples: nothing to replay"
+              + (f" ({' and '.join(skipped)} not written)" if skipped else ""), file=sys.stderr, flush=True)
+        return 0
     if args.figure:
         return run_replay_figure(args, rec)
     interactive = args.step and os.isatty(sys.stdin.fileno())
@@ -256,7 +263,7 @@ def run_replay_figure(args: argparse.Namespace, rec) -> int:
         write_human(args.out, fig)  # .fig with psurfs beside it (or .glb, .obj ...)
         print(f"wrote {args.out}", file=sys.stderr if args.json else sys.stdout, flush=True)
     if args.png:
-        from jackpy.ui.render import write_png
+        from jackpy.render import write_png
 
         write_png(args.png, np.concatenate(shots, axis=1))
         print(f"wrote {args.png} ({len(shots)} snapshots)", file=sys.stderr if args.json else sys.stdout,

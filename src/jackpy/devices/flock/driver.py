@@ -1,7 +1,13 @@
 """pyserial driver for the Flock of Birds: configuration, a reader thread, a latest-sample store.
 
-Topologies: one port with a standalone bird; one port with a flock of N birds (FBB prefixes,
-AUTO-CONFIG, group mode); or one port per bird (``ports=[...]``, the first on the master).
+Topologies: one port with a standalone bird; one port with a flock of N sensor birds (FBB
+prefixes, AUTO-CONFIG, group mode), with or without an Extended Range Controller; or one port
+per bird (``ports=[...]``, the first on the master).
+
+A flock is mapped from its FLOCK SYSTEM STATUS (spec §5.4): the sensor birds are the accessible
+units with a sensor, in address order (an ERC has none and is skipped: no format, hemisphere or
+scaling command is ever sent to it); AUTO-CONFIG names the highest address needed; positions are
+at the ERT's fixed 144 in full scale when an ERC is present, else at each bird's POSITION SCALING.
 Ports are pyserial URLs, so ``/dev/ttyUSB0``, a pty path and ``socket://host:port`` all work.
 
 The reader thread owns all reads while running; the workbench only calls :meth:`FlockDriver.latest`
@@ -80,8 +86,8 @@ class DriverStats:
     """Counters of a running driver (cumulative over reconnects)."""
 
     records: int = 0
-    dropped: int = 0
-    skipped_bytes: int = 0
+    dropped: int = 0  # records lost (broken or missing in the cycle), see StreamDecoder
+    skipped_bytes: int = 0  # stray bytes that belong to no lost record
     disconnects: int = 0
     connects: int = 0
     max_pending_bytes: int = 0
@@ -104,14 +110,15 @@ class FlockDriver:
 
     ``birds``: number of sensor birds (single port; ignored with several ports: one each).
     ``mode``: ``"stream"`` or ``"point"`` (polled at ``point_rate`` Hz). Other settings are
-    applied to every bird at each (re)connection. Timing knobs default to the manual's values.
+    applied to every bird at each (re)connection. Timing knobs default to the manual's values
+    (``autoconfig_wait`` 0.65 s: the manual's 600 ms before and after AUTO-CONFIG, with margin).
     """
 
     def __init__(self, ports: str | Sequence[str], birds: int = 1, *,
                  format: Format = Format.POSITION_ANGLES, mode: str = "stream",
                  hemisphere: str = "forward", measurement_rate: float | None = None,
                  report_rate: int = 1, point_rate: float = 50.0, baudrate: int = 115200,
-                 rts_reset: tuple[float, float] | None = (1.0, 2.0), autoconfig_wait: float = 0.6,
+                 rts_reset: tuple[float, float] | None = (1.0, 2.0), autoconfig_wait: float = 0.65,
                  reply_timeout: float = 0.5, data_timeout: float = 2.0,
                  reconnect_interval: float = 1.0) -> None:
         self.urls = [ports] if isinstance(ports, str) else list(ports)
@@ -197,12 +204,6 @@ class FlockDriver:
     def birds(self) -> list[int]:
         """FBB addresses of the sensor birds (``[0]`` for a standalone unit)."""
         return sorted(self.layouts)
-
-    def examine(self, param: int, bird: int | None = None) -> bytes:
-        """EXAMINE VALUE ``param`` of ``bird`` (default: the master); pauses a running stream."""
-        link, prefix = self._route(bird)
-        with self._command_mode(link):
-            return self._ask(link, prefix + p.examine_value(param), p.EXAMINE_LENGTH[param])
 
     def change(self, param: int, value: bytes, bird: int | None = None) -> None:
         """CHANGE VALUE ``param`` of ``bird`` (default: the master); pauses a running stream."""
@@ -312,31 +313,37 @@ class FlockDriver:
         flock = address != 0
         if len(links) > 1 and not flock:
             raise DeviceError("several ports, but the first unit is standalone (FBB address 0)", master.url)
+        erc = False
+        sensors: list[int] = []
         if flock:
             status = self._ask(master, p.examine_value(p.P_SYSTEM_STATUS), 14)
-            units = sum(1 for b in status if b & 0x80)
-            if units < self.nbirds:
-                raise DeviceError(f"{self.nbirds} birds wanted but {units} answer on the bus "
-                                  f"(system status {status.hex(' ')})", master.url)
+            sensors, units, erc = self._map_flock(status, master.url)
             self._stop.wait(self.autoconfig_wait)
             master.ser.write(p.change_value(p.P_AUTO_CONFIG, bytes([units])))
             self._stop.wait(self.autoconfig_wait)
+        self.info["erc"] = "yes" if erc else "no"
         if self.measurement_rate is not None:
             master.ser.write(p.change_value(p.P_MEASUREMENT_RATE, p.measurement_rate_value(self.measurement_rate)))
         self.layouts = {}
         if len(links) == 1:
-            master.birds = list(range(1, self.nbirds + 1)) if flock else [0]
-            master.group = self.nbirds > 1
+            master.birds = sensors if flock else [0]
+            # group mode whenever the master is not the one bird streamed (several birds, an ERC)
+            master.group = flock and master.birds != [address]
         else:
             for link in links:
                 link.birds = [self._ask(link, p.examine_value(p.P_FBB_ADDRESS), 1)[0]]
         for link in links:
             for bird in link.birds:
-                prefix = p.fbb_prefix(bird) if link.group else b""
+                # per-sensor commands: prefixed on a shared flock port, never to an ERC (spec §2.2)
+                prefix = p.fbb_prefix(bird) if flock and len(links) == 1 else b""
                 link.ser.write(prefix + bytes([self.format]))
                 link.ser.write(prefix + p.hemisphere_command(self.hemisphere))
-                code = self._ask(link, prefix + p.examine_value(p.P_POSITION_SCALING), 2)[0]
-                self.layouts[bird] = BirdLayout(self.format, p.POSITION_SCALES[code & 1])
+                if erc:
+                    scale = p.ERT_SCALE
+                else:
+                    code = self._ask(link, prefix + p.examine_value(p.P_POSITION_SCALING), 2)[0]
+                    scale = p.POSITION_SCALES[code & 1]
+                self.layouts[bird] = BirdLayout(self.format, scale)
             link.decoder = StreamDecoder({b: self.layouts[b] for b in link.birds}, group=link.group)
         if master.group:
             master.ser.write(p.change_value(p.P_GROUP_MODE, b"\x01"))
@@ -348,6 +355,26 @@ class FlockDriver:
                 link.ser.write(p.change_value(p.P_REPORT_RATE, bytes([self.report_rate])))
             if self.mode == "stream":
                 link.ser.write(bytes([p.STREAM]))
+
+    def _map_flock(self, status: bytes, url: str) -> tuple[list[int], int, bool]:
+        """From FLOCK SYSTEM STATUS: the sensor birds to stream (the first ``nbirds`` units with
+        a sensor, ERCs skipped), the AUTO-CONFIG unit count (the highest address they need; all
+        units up to it must answer) and whether an ERC is present."""
+        accessible = [a for a, b in enumerate(status, start=1) if b & p.UNIT_ACCESSIBLE]
+        have = [a for a in accessible if status[a - 1] & p.UNIT_HAS_SENSOR]
+        if len(have) < self.nbirds:
+            raise DeviceError(f"{self.nbirds} sensor birds wanted but {len(have)} answer on the bus "
+                              f"(system status {status.hex(' ')})", url)
+        sensors = have[:self.nbirds]
+        units = sensors[-1]
+        silent = [a for a in range(1, units + 1) if a not in accessible]
+        if silent:
+            raise DeviceError(f"FBB address(es) {silent} do not answer; AUTO-CONFIG needs every unit "
+                              f"from 1 to {units} (system status {status.hex(' ')})", url)
+        erc = any(status[a - 1] & p.UNIT_IS_ERC for a in range(1, units + 1))
+        if erc:
+            self._event(f"Extended Range Controller present: sensor birds {sensors}, 144 in full scale")
+        return sensors, units, erc
 
     def _ask(self, link: _Link, frame: bytes, n: int) -> bytes:
         """Send a request and read exactly ``n`` reply bytes, or raise a clear timeout."""

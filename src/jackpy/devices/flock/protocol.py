@@ -97,6 +97,22 @@ HEMISPHERES: dict[str, bytes] = {
 
 #: Position full scale in inches: param 3 code 0 / 1, and the Extended Range Transmitter.
 POSITION_SCALES = (36.0, 72.0, 144.0)
+#: Full scale of every bird in a flock driven by an Extended Range Controller (spec §3.3, §5.4).
+ERT_SCALE = 144.0
+
+#: Bits of a FLOCK SYSTEM STATUS byte (param 36, one per FBB address), spec §2.5.
+UNIT_ACCESSIBLE = 0x80
+UNIT_RUNNING = 0x40
+UNIT_HAS_SENSOR = 0x20
+UNIT_IS_ERC = 0x10
+UNIT_TRANSMITTERS = 0x0F
+
+#: Commands that address one sensor bird (spec §2.2): they need an FBB prefix on a flock and
+#: must never reach an ERC. Formats are added below, with :class:`Format`.
+SENSOR_COMMANDS = {HEMISPHERE, ANGLE_ALIGN1, ANGLE_ALIGN2, BORESIGHT, BORESIGHT_REMOVE, OFFSET,
+                   BUTTON_MODE, BUTTON_READ, METAL, METAL_ERROR}
+#: Parameters (CHANGE and EXAMINE VALUE) of one sensor bird, spec §2.2.
+SENSOR_PARAMS = {3, 4, 5, 12, 13, 14, 17, 20, 22, 23, 25, 26, 27, 28}
 
 #: Device error codes: code -> (meaning, severity), spec §4.1.
 ERROR_CODES: dict[int, tuple[str, str]] = {
@@ -174,6 +190,8 @@ _ORIENT_WORDS = {
     Format.POSITION_MATRIX: 9, Format.QUATERNION: 4, Format.POSITION_QUATERNION: 4,
 }
 
+SENSOR_COMMANDS |= {int(f) for f in Format}
+
 _FORMAT_ALIASES = {
     "pos": Format.POSITION, "ang": Format.ANGLES, "mat": Format.MATRIX, "quat": Format.QUATERNION,
     "pos_ang": Format.POSITION_ANGLES, "pos_mat": Format.POSITION_MATRIX,
@@ -221,11 +239,8 @@ def s16(value: int) -> bytes:
 
 
 def u16_le(data: bytes) -> int:
+    """An unsigned 16-bit reply or command word, LS byte first."""
     return int.from_bytes(data[:2], "little")
-
-
-def s16_le(data: bytes) -> int:
-    return int.from_bytes(data[:2], "little", signed=True)
 
 
 # --- records ---------------------------------------------------------------------------------
@@ -486,13 +501,39 @@ _WORD = _word_table()
 
 
 class StreamDecoder:
-    """Incremental record parser that frames on the phasing bit (spec §4.2).
+    """Incremental record parser that frames on the phasing bit (spec §4.2), and counts exactly
+    what it could not deliver.
 
     ``layouts`` maps FBB address -> :class:`BirdLayout`. With ``group=True`` records end with
     the address byte, which is validated against ``layouts``; without it there must be exactly
-    one layout and its key labels the records. Broken records (a phasing byte inside, or a bad
-    address) are counted in ``dropped``; bytes discarded while hunting for a record start in
-    ``skipped_bytes``. Never raises on any input.
+    one layout and its key labels the records. Never raises on any input.
+
+    Framing: a record starts at a byte with the phasing bit and must hold no other one; in group
+    mode it ends with a configured address. A record that follows the previous one directly and
+    is the bird due next in the cycle is accepted at once; any other candidate (after a gap of
+    stray bytes, or out of turn) waits for the bytes after it: they must start a record, or be
+    the remains of the next record without its phasing byte. So a false start inside a garbage
+    burst, or the remains of two damaged records read as one, is not delivered; the price is
+    that the first record after a fault comes out when the next one starts (at most one cycle
+    later), and a record squeezed between two garbage bursts is lost (and counted). A burst whose
+    last bytes look exactly like a whole record (probability about 2^-(length-1) per burst, and
+    1/256 of that in group mode) is taken for one.
+
+    Counting (``dropped``: records lost; ``skipped_bytes``: stray bytes that belong to no lost
+    record), settled at each delivered record for the gap before it:
+
+    * several birds in group mode: the records lost are the birds missing in the cycle between
+      the previous delivered address and this one (records come in ascending address order every
+      cycle), so a record that lost its phasing byte, its address or any other byte counts as one
+      lost record; the gap's bytes beyond those records' lengths are stray bytes. A whole lost
+      cycle leaves no trace in the addresses and is not counted.
+    * one bird per stream (standalone, one port per bird, or one sensor behind an ERC): a record
+      that lost one byte leaves ``length - 1`` bytes with no phasing bit after their first, so a
+      gap made only of such remains counts that many lost records; any other gap counts as stray
+      bytes. (Garbage that looks exactly like such remains is counted as lost records.)
+
+    A stream starts with a cycle's first record (the driver drains the port and restarts the
+    stream after every :meth:`reset`).
     """
 
     def __init__(self, layouts: Mapping[int, BirdLayout], group: bool = False) -> None:
@@ -503,25 +544,31 @@ class StreamDecoder:
         self.group = group
         self.layouts = dict(layouts)
         addrs = sorted(self.layouts)
+        self._addrs = addrs
         self._lengths = {a: self.layouts[a].length(group) for a in addrs}
         self._structs = {a: struct.Struct(f"<{self.layouts[a].format.words}H") for a in addrs}
         # candidate order after each address: the next address first, then the others
         self._order = {a: addrs[i + 1:] + addrs[:i + 1] for i, a in enumerate(addrs)}
-        self._next = self._order[addrs[-1]]
+        self._cycle = group and len(addrs) > 1  # lost records are read from the address sequence
         self._buf = bytearray()
+        self._gap = bytearray()  # bytes since the last delivered record that framed nothing
+        self._last: int | None = None
+        self._next = self._order[addrs[-1]]
         self.records = 0
         self.dropped = 0
         self.skipped_bytes = 0
 
     @property
     def pending(self) -> int:
-        """Bytes buffered waiting for the rest of a record."""
+        """Bytes buffered waiting for the rest of a record (or for the byte after it)."""
         return len(self._buf)
 
     def reset(self) -> None:
         """Forget buffered bytes (after a flush or a command exchange)."""
         self._buf.clear()
-        self._next = self._order[max(self.layouts)]
+        self._gap.clear()
+        self._last = None
+        self._next = self._order[self._addrs[-1]]
 
     def feed(self, data: bytes | bytearray) -> list[Record]:
         """Add received bytes; return the complete records now available, in order."""
@@ -535,18 +582,20 @@ class StreamDecoder:
             if buf[i] < 0x80:  # hunt for a record start
                 m = search(buf, i)
                 j = m.start() if m else n
-                self.skipped_bytes += j - i
+                self._skip(buf, i, j)
                 i = j
                 if i >= n:
                     break
             addr = self._match(buf, i, n)
             if addr is None:  # need more bytes
                 break
-            if addr < 0:  # broken record: restart at the next phasing byte
-                self.dropped += 1
+            if addr < 0:  # no record starts here: on to the next phasing byte
                 m = search(buf, i + 1)
-                i = m.start() if m else n
+                j = m.start() if m else n
+                self._skip(buf, i, j)
+                i = j
                 continue
+            self._settle(addr)
             lay = self.layouts[addr]
             unpack = self._structs[addr]
             words = tuple(map(_WORD.__getitem__, unpack.unpack_from(buf, i)))
@@ -559,24 +608,76 @@ class StreamDecoder:
                 metal = buf[k]
             out.append(Record(lay.format, words, lay.scale, button, metal, addr))
             i += self._lengths[addr]
+            self._last = addr
             self._next = self._order[addr]
         del buf[:i]
         self.records += len(out)
         return out
 
+    _GAP_KEEP = 4096  # gap bytes kept for the one-bird rule; a longer gap is all stray bytes
+
+    def _skip(self, buf: bytearray, i: int, j: int) -> None:
+        take = min(j - i, self._GAP_KEEP - len(self._gap))
+        self._gap += buf[i:i + take]
+        self.skipped_bytes += j - i - take
+
     def _match(self, buf: bytearray, i: int, n: int) -> int | None:
-        """Address of the record starting at ``i``; None = need more bytes; -1 = broken."""
+        """Address of the record starting at ``i``; None = need more bytes; -1 = none starts here."""
         search = _PHASE.search
-        for addr in self._next:
+        in_turn = not self._gap  # right after the previous record (or at the stream's start)
+        for k, addr in enumerate(self._next):
             length = self._lengths[addr]
             end = i + length
             if search(buf, i + 1, min(end, n)):
                 continue  # a phasing byte inside: not this bird's record
             if end > n:
                 return None
-            if not self.group or buf[end - 1] == addr:
-                return addr
+            if self.group and buf[end - 1] != addr:
+                continue
+            if not (in_turn and k == 0):  # out of turn: what follows must fit too
+                fits = self._followed_well(buf, end, n, addr)
+                if fits is None:
+                    return None
+                if not fits:
+                    continue
+            return addr
         return -1
+
+    def _followed_well(self, buf: bytearray, end: int, n: int, addr: int) -> bool | None:
+        """Whether what follows a candidate record of ``addr`` ending at ``end`` is a record
+        start, or the remains of the next bird's record that lost its phasing byte
+        (``length - 1`` bytes without one, ending with its address in group mode); None until
+        enough bytes have arrived to tell."""
+        if end >= n:
+            return None
+        if buf[end] >= 0x80:
+            return True
+        nxt = self._order[addr][0]
+        stop = end + self._lengths[nxt] - 1
+        if _PHASE.search(buf, end, min(stop, n)):
+            return False
+        if stop >= n:
+            return None
+        return (not self.group or buf[stop - 1] == nxt) and buf[stop] >= 0x80
+
+    def _settle(self, addr: int) -> None:
+        """Count the gap before a delivered record of ``addr``: records lost and stray bytes."""
+        gap = len(self._gap)
+        lost = 0
+        if self._cycle:
+            order = self._next  # after a reset: the cycle's first address is due
+            missing = order[:order.index(addr)]
+            lost = len(missing)
+            gap -= min(gap, sum(self._lengths[b] for b in missing))
+        elif gap:
+            remains = self._lengths[addr] - 1
+            g = self._gap
+            if remains > 0 and gap % remains == 0 and not any(
+                    _PHASE.search(g, k + 1, k + remains) for k in range(0, gap, remains)):
+                lost, gap = gap // remains, 0
+        self.dropped += lost
+        self.skipped_bytes += gap
+        self._gap.clear()
 
 
 def angles_from_rotation(r: np.ndarray) -> tuple[float, float, float]:

@@ -8,7 +8,17 @@ paced by its own clock (a pty ignores the baud rate). Topologies:
 * one bird, one port: a standalone unit (FBB address 0, running at once);
 * N birds, one port: a flock at addresses 1..N on the master's port; nothing runs until
   FBB AUTO-CONFIG, group mode returns every bird's record with its address byte;
-* N birds, ``multi_port=True``: one port per bird (records carry no address byte).
+* N birds, ``multi_port=True``: one port per bird (records carry no address byte);
+* ``erc=True``: an Extended Range Controller at address 1 (the master, with its Extended Range
+  Transmitter) and N sensor birds at addresses 2..N+1 behind its port. The ERC has no sensor: its
+  system status byte says so (``D1`` running), AUTO-CONFIG counts it, group mode returns only the
+  sensor birds' records, and every position is at the ERT's fixed 144 in full scale whatever
+  POSITION SCALING says (spec §2.3, §3.3). A per-sensor command that reaches the ERC is kept in
+  :attr:`FlockSimulator.erc_commands` (the manual says never to send one; what the hardware does
+  then is not documented).
+
+AUTO-CONFIG with n units configures addresses 1..n (contiguous, as on the hardware); units above
+n stay idle, n above the flock latches error 13 with the first missing address.
 
 Timing rules honoured: bytes arriving within ``autoconfig_delay`` seconds after AUTO-CONFIG are
 ignored (the unit is busy configuring). Faults: dropped bytes, inserted garbage, error codes
@@ -60,6 +70,7 @@ class SimBird:
     button_mode: bool = False
     button: int = 0
     metal: bool = False
+    erc: bool = False  # an Extended Range Controller: no sensor, drives the ERT
     values: dict[int, bytes] = field(default_factory=dict)  # other CHANGE VALUE params
 
 
@@ -158,12 +169,17 @@ class FlockSimulator:
 
     def __init__(self, birds: int = 1, *, multi_port: bool = False, rate: float = 103.3,
                  motion: Motion | None = None, link: str | None = None, tcp_port: int | None = None,
-                 autoconfig_delay: float = 0.6, log: bool = False, seed: int = 0) -> None:
-        if not 1 <= birds <= 14:
-            raise DeviceError(f"the simulator supports 1..14 birds (normal addressing), not {birds}")
-        self.standalone = birds == 1 and not multi_port
-        addresses = [0] if self.standalone else list(range(1, birds + 1))
-        self.birds = {a: SimBird(a) for a in addresses}
+                 autoconfig_delay: float = 0.6, log: bool = False, seed: int = 0,
+                 erc: bool = False) -> None:
+        if not 1 <= birds + erc <= 14:
+            raise DeviceError(f"the simulator supports 1..14 units (normal addressing), not {birds + erc}")
+        if erc and multi_port:
+            raise DeviceError("the simulator runs an ERC flock on one port only")
+        self.erc = erc
+        self.standalone = birds == 1 and not multi_port and not erc
+        addresses = [0] if self.standalone else list(range(1, birds + erc + 1))
+        self.birds = {a: SimBird(a, erc=erc and a == 1, scale=p.ERT_SCALE if erc else 36.0)
+                      for a in addresses}
         self.master = addresses[0]
         self.multi_port = multi_port
         if multi_port and tcp_port is not None:
@@ -178,6 +194,8 @@ class FlockSimulator:
         self.report_rate = 1
         self.group_mode = False
         self.configured = self.standalone
+        self.units = len(addresses)  # addresses 1..units run after AUTO-CONFIG
+        self.erc_commands: list[bytes] = []
         self.sleeping = False
         self.error = 0
         self.error_info = 0
@@ -186,7 +204,7 @@ class FlockSimulator:
         self.busy_until = 0.0
         self.hang_until = 0.0
         self.log = log
-        self.sent: dict[int, list[SentRecord]] = {a: [] for a in addresses}
+        self.sent: dict[int, list[SentRecord]] = {a: [] for a in addresses if not self.birds[a].erc}
         self.records_sent = 0
         self.overrun_bytes = 0
         self.ignored_bytes = 0
@@ -223,19 +241,20 @@ class FlockSimulator:
     def reset(self) -> None:
         """What an RTS reset does: power-up defaults (spec §1.1)."""
         with self._lock:
-            for a in self.birds:
-                self.birds[a] = SimBird(a)
+            for a, old in self.birds.items():
+                self.birds[a] = SimBird(a, erc=old.erc, scale=p.ERT_SCALE if self.erc else 36.0)
             for port in self.ports:
                 port.streaming = False
                 port.inbuf.clear()
             self.report_rate, self.group_mode = 1, False
             self.configured, self.sleeping = self.standalone, False
+            self.units = len(self.birds)
             self.error = self.error_info = 0
             self.error_flag = self.stopped_by_fatal = False
 
     # --- faults ---------------------------------------------------------------------------------
     def drop_bytes(self, records: int) -> None:
-        """Lose one (non-first) byte from each of the next ``records`` records sent."""
+        """Lose one byte (any, the phasing byte included) from each of the next ``records`` records."""
         with self._lock:
             self._drop_next += records
 
@@ -321,6 +340,7 @@ class FlockSimulator:
                 return start + 2
             if len(buf) < start + n:
                 return 0
+            self._to_erc(target, param in p.SENSOR_PARAMS, buf[:start + n])
             self._change(port, target, param, bytes(buf[start + 2:start + n]))
             return start + n
         n = p.COMMAND_DATA_LENGTH.get(cmd)
@@ -329,8 +349,17 @@ class FlockSimulator:
             return start + 1
         if len(buf) < start + 1 + n:
             return 0
+        sensor = cmd in p.SENSOR_COMMANDS or (cmd == p.EXAMINE_VALUE and buf[start + 1] in p.SENSOR_PARAMS) \
+            or (cmd == p.POINT and start == 1)
+        self._to_erc(target, sensor, buf[:start + 1 + n])
         self._execute(port, target, cmd, bytes(buf[start + 1:start + 1 + n]))
         return start + 1 + n
+
+    def _to_erc(self, target: int, sensor_command: bool, frame: bytearray) -> None:
+        """Keep a per-sensor command addressed to an ERC (for tests)."""
+        bird = self.birds.get(target)
+        if sensor_command and bird is not None and bird.erc:
+            self.erc_commands.append(bytes(frame))
 
     def _bird(self, target: int) -> SimBird | None:
         if target not in self.birds:
@@ -401,7 +430,9 @@ class FlockSimulator:
     def _change(self, port: _Port, target: int, param: int, value: bytes) -> None:
         bird = self.birds.get(target)
         if param == p.P_POSITION_SCALING and bird:
-            bird.scale = p.POSITION_SCALES[value[0] & 1]
+            bird.values[param] = value
+            if not self.erc:  # with an ERT the full scale is fixed at 144 in
+                bird.scale = p.POSITION_SCALES[value[0] & 1]
         elif param == p.P_MEASUREMENT_RATE:
             self.rate = min(144.0, max(10.0, p.u16_le(value) / 256.0))
         elif param == p.P_REPORT_RATE:
@@ -411,10 +442,10 @@ class FlockSimulator:
         elif param == p.P_HEMISPHERE and bird:
             bird.hemisphere = value
         elif param == p.P_AUTO_CONFIG:
-            if value[0] != len(self.birds) or self.standalone:
-                self._latch(13, value[0])
+            if self.standalone or not 1 <= value[0] <= len(self.birds):
+                self._latch(13, len(self.birds) + 1)
             else:
-                self.configured = True
+                self.configured, self.units = True, value[0]
             self.busy_until = time.perf_counter() + self.autoconfig_delay
         elif bird:
             bird.values[param] = value
@@ -440,14 +471,14 @@ class FlockSimulator:
         elif param == p.P_CRYSTAL:
             reply = b"\x19\x00"
         elif param == p.P_POSITION_SCALING:
-            reply = bytes([1 if bird.scale == 72.0 else 0, 0])
+            reply = bird.values.get(param, b"\x00\x00")
         elif param == p.P_MEASUREMENT_RATE:
             reply = p.s16(int(round(self.rate * 256)))
         elif param in (p.P_ERROR_CODE, p.P_EXPANDED_ERROR):
             reply = bytes([self.error, self.error_info])[:n]
             self.error = self.error_info = 0
         elif param == p.P_MODEL_ID:
-            reply = b"6DFOB     "
+            reply = b"6DERC     " if bird.erc else b"6DFOB     "
         elif param == p.P_ADDRESSING_MODE:
             reply = b"\x00"
         elif param == p.P_FBB_ADDRESS:
@@ -459,11 +490,16 @@ class FlockSimulator:
         elif param == p.P_GROUP_MODE:
             reply = bytes([self.group_mode])
         elif param == p.P_SYSTEM_STATUS:
-            run = 0x40 if self.configured else 0
-            status = [0x80 | run | 0x20 | (1 if a == self.master else 0) for a in sorted(self.birds)]
+            status = []
+            for a in sorted(self.birds):
+                b = self.birds[a]
+                run = p.UNIT_RUNNING if self.configured and a <= self.units else 0
+                kind = (p.UNIT_IS_ERC | 0x01 if b.erc else p.UNIT_HAS_SENSOR
+                        | (0x01 if a == self.master else 0))
+                status.append(p.UNIT_ACCESSIBLE | run | kind)
             reply = bytes(status + [0] * (14 - len(status)))
         elif param == p.P_AUTO_CONFIG:
-            mask = sum(1 << a for a in self.birds) if self.configured else 0
+            mask = sum(1 << a for a in self.birds if a <= self.units) if self.configured else 0
             reply = bytes([0 if self.standalone else 1]) + p.s16(mask) + b"\x00\x00"
         else:
             reply = bird.values.get(param, b"\x00" * n)
@@ -482,18 +518,22 @@ class FlockSimulator:
     def _emit(self, port: _Port, point: bool, target: int | None = None) -> None:
         """Send one cycle's records on ``port`` (called with the lock held)."""
         group = self.group_mode and not self.multi_port and not self.standalone
-        if group:
-            addrs = sorted(self.birds)
+        if group:  # every running sensor bird, smallest address first; an ERC sends nothing
+            addrs = [a for a in sorted(self.birds) if a <= self.units and not self.birds[a].erc]
         else:
             addrs = [target if point and target in self.birds else port.bird]
         t = self._frozen_t if self.sleeping else time.perf_counter() - self._t0
         for a in addrs:
+            if self.birds[a].erc:  # asked for data outside group mode: a fixed pose (spec §3.4)
+                rec = p.make_record(self.birds[a].format, scale=p.ERT_SCALE, address=a)
+                port.write(p.encode_record(rec))
+                continue
             rec = self._record(self.birds[a], t)
             data = p.encode_record(rec, group=group)
             intact = True
             if self._drop_next:
                 self._drop_next -= 1
-                k = self._rng.randrange(1, len(data))
+                k = self._rng.randrange(len(data))
                 data = data[:k] + data[k + 1:]
                 intact = False
             if self._garbage:
