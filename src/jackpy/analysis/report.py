@@ -4,8 +4,10 @@
 Per figure (sex and percentile of the standard human, standing where the scene says): point reach
 of every reach site with the chosen hand, the hand's reachable workspace (sites classified inside or
 outside), visibility of every view target from the eyes with its view cone and occluders, joint
-torques against strength while reaching the first reach site holding the load, and the clearance
-to every object. Pictures: an overall view, the eye view, and the reach envelope.
+torques against strength while reaching the first reach site holding the load, the clearance
+to every object and, when asked, the ergonomic assessments of that same posture
+(:mod:`jackpy.ergonomics`). Pictures: an overall view, the eye view, the reach envelope and, per
+ergonomic method, the assessed posture with its worst body part in the action level's colour.
 """
 
 from __future__ import annotations
@@ -41,6 +43,7 @@ from jackpy.analysis.view import (
 )
 from jackpy.analysis.workspace import Chain, reachable_workspace
 from jackpy.atomic import atomic_write_bytes, atomic_write_text
+from jackpy.ergonomics.summary import flat, json_ready, value_text
 from jackpy.errors import JackpyError
 from jackpy.peabody.model import Figure
 from jackpy.scene.workplace import Workplace, resolve_target, stand_figure
@@ -55,7 +58,9 @@ REACH_MODE_TEXT = {"arm": "arm only (torso and feet fixed)", "body": "whole body
 class Options:
     """What to analyse: figure sizes ``(sex, percentile)``, reach and view targets (``object.site``
     or ``object``), the load in the hand (kg), the hand, the workspace resolution (cells per axis)
-    and the point-reach mode (``"arm"``, ``"body"`` or ``"step"``, see :func:`point_reach`)."""
+    and the point-reach mode (``"arm"``, ``"body"`` or ``"step"``, see :func:`point_reach`); the
+    ergonomic methods to run (names of :func:`jackpy.ergonomics.methods`) and their
+    :class:`~jackpy.ergonomics.Task` (default: the load in the hands)."""
 
     figures: list[tuple[str, float]]
     reach: list[str] = field(default_factory=list)
@@ -64,6 +69,8 @@ class Options:
     hand: str = "right"
     resolution: int = 48
     reach_mode: str = "arm"
+    ergonomics: list[str] = field(default_factory=list)
+    ergo_task: Any = None
 
 
 def parse_figures(text: str) -> list[tuple[str, float]]:
@@ -170,12 +177,53 @@ def analyse_figure(wp: Workplace, figure: Figure, opts: Options, renderer: Offsc
         c = chk.clearance(name)
         res["clearance"][name] = {"distance_m": c.distance, "segment": c.segment}
     res["clearance_posture"] = first or "neutral"
+    # --- ergonomics (the strength posture) ----------------------------------------------------
+    assessed = _ergonomics(figure, opts)
+    if assessed:
+        res["ergonomics"] = {"posture": first or "neutral",
+                             "methods": {n: json_ready(a.to_dict()) for n, a in assessed.items()}}
     # --- pictures -----------------------------------------------------------------------------
     if renderer is not None and pictures is not None:
         colours = torque_vertex_colours(figure, joint_utilisation(figure, util)) if util is not None else {}
         _pictures(renderer, wp, figure, colours, ws, ev, pictures, tag)
+        _ergonomics_pictures(renderer, wp, figure, assessed, pictures, tag)
     neutral.apply(figure)
     return res
+
+
+def _ergonomics(figure: Figure, opts: Options) -> dict[str, Any]:
+    """The assessments ``opts.ergonomics`` of the figure's current posture (empty when none asked)."""
+    if not opts.ergonomics:
+        return {}
+    from jackpy.ergonomics import Task, assess
+
+    task = opts.ergo_task if opts.ergo_task is not None else Task(load_kg=opts.load_kg)
+    return assess(figure, opts.ergonomics, task)
+
+
+def _ergonomics_pictures(renderer: OffscreenRenderer, wp: Workplace, figure: Figure, assessed: dict[str, Any],
+                         pictures: dict[str, bytes], tag: str) -> None:
+    """Per method, the posture from the front-left with the worst body part in its level's colour."""
+    from jackpy.ergonomics.summary import level_colour, worst_segments
+
+    if not assessed:
+        return
+    bodies = figure_bodies(figure)
+    pts = np.vstack([b.mesh.vertices @ b.model[:3, :3].T + b.model[:3, 3] for b in bodies])
+    lo, hi = pts.min(axis=0), pts.max(axis=0)
+    centre, radius = (lo + hi) / 2, float(np.linalg.norm(hi - lo)) / 2
+    fwd = figure.world_transforms()["pelvis"][:3, 2]
+    side = np.cross([0.0, 1.0, 0.0], fwd)
+    eye = centre + radius * 2.4 * (0.55 * fwd + 0.85 * side + np.array([0.0, 0.25, 0.0]))
+    view = look_at(eye, centre)
+    proj = perspective(np.radians(40), PICTURE_SIZE[0] / PICTURE_SIZE[1], 0.05, radius * 8)
+    env = environment_bodies(wp.env)
+    for name, a in assessed.items():
+        hot = set(worst_segments(a))
+        colour = tuple(level_colour(a)) + (1.0,)
+        for b in bodies:
+            b.colour = colour if b.name.split(".", 1)[1] in hot else (0.9, 0.9, 0.9, 1.0)
+        pictures[f"{tag}-ergo-{name}.png"] = _png(renderer.render(env + bodies, view, proj))
 
 
 def _stature(figure: Figure) -> float:
@@ -297,6 +345,11 @@ def _rows(results: dict[str, Any]) -> list[list[Any]]:
                              f"{d['torque_Nm']:.1f} N m of {d['strength_Nm']:.1f}" if d["strength_Nm"] is not None else ""])
         for name, c in r["clearance"].items():
             rows.append([f, "clearance", name, "distance", round(c["distance_m"], 4), "m", c["segment"]])
+        for name, a in r.get("ergonomics", {}).get("methods", {}).items():
+            rows.append([f, "ergonomics", name, "score", a["score"], a["unit"], a["action"]])
+            rows.append([f, "ergonomics", name, "level", a["level"], "", "; ".join(a["flags"])])
+            rows += [[f, "ergonomics", name, k, v, "", "worksheet"] for k, v in flat(a["worksheet"])]
+            rows += [[f, "ergonomics", name, k, v, "", "posture"] for k, v in flat(a["posture"])]
     return rows
 
 
@@ -306,6 +359,26 @@ def _csv(results: dict[str, Any]) -> str:
     w.writerow(["figure", "analysis", "target", "metric", "value", "unit", "note", "reach_mode"])
     w.writerows(row + [""] * (8 - len(row)) for row in _rows(results))
     return buf.getvalue()
+
+
+def _ergonomics_html(r: dict[str, Any], pictures: dict[str, bytes]) -> str:
+    """The report's ergonomics sections: per method its score, flags, worksheet and posture picture."""
+    e = html.escape
+    t = r["tag"]
+    out = [f"<h3>Ergonomics</h3><p>Posture: {e(r['ergonomics']['posture'])}.</p>"]
+    for name, a in r["ergonomics"]["methods"].items():
+        score = value_text(a["score"]) if a["score"] is not None else "inf"
+        out.append(f"<h4>{e(name)}: {e(score)} {e(a['unit'])} (level {a['level']})</h4><p>{e(a['action'])}; worst: "
+                   f"{e(str(a['worst']))}.</p>")
+        if f"{t}-ergo-{name}.png" in pictures:
+            out.append(f"<img src='{t}-ergo-{name}.png' alt='{e(name)} posture' width='427'>")
+        out += [f"<p class='bad'>{e(f)}</p>" for f in a["flags"]]
+        out.append("<table><tr><th>worksheet</th><th>value</th></tr>")
+        out += [f"<tr><td>{e(k)}</td><td>{e(value_text(v))}</td></tr>" for k, v in flat(a["worksheet"])]
+        out.append(f"</table><table><tr><th>posture ({e(a['frame'])})</th><th>value</th></tr>")
+        out += [f"<tr><td>{e(k)}</td><td>{e(value_text(v))}</td></tr>" for k, v in flat(a["posture"])]
+        out.append("</table>")
+    return "\n".join(out)
 
 
 def _html(results: dict[str, Any], pictures: dict[str, bytes]) -> str:
@@ -357,5 +430,7 @@ def _html(results: dict[str, Any], pictures: dict[str, bytes]) -> str:
         for name, c in r["clearance"].items():
             parts.append(f"<tr><td>{e(name)}</td><td>{c['distance_m'] * 100:.1f} cm</td><td>{e(c['segment'])}</td></tr>")
         parts.append("</table>")
+        if "ergonomics" in r:
+            parts.append(_ergonomics_html(r, pictures))
     parts.append("</body></html>\n")
     return "\n".join(parts)

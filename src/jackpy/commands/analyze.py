@@ -19,6 +19,11 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="point reach with the arm only (default), the whole body with the feet planted "
                         "(bends and shifts its weight, balanced), or the whole body allowed to step")
     p.add_argument("--resolution", type=int, default=48, help="workspace voxels per axis (default 48)")
+    p.add_argument("--ergonomics", default=None, metavar="M[,M...]",
+                   help="ergonomic assessments of the strength posture: rula, reba, owas, niosh, lowback, capable "
+                        "(comma separated, or all); a report section per method")
+    p.add_argument("--ergo-task", default=None, metavar="TASK.json",
+                   help="ergonomic task parameters (docs/ergonomics.md; default: the load in the hands)")
     p.add_argument("--no-pictures", action="store_true", help="skip rendering (and visibility, which renders)")
     p.add_argument("-o", "--output", required=True, metavar="DIR", help="folder for the report")
     p.set_defaults(func=run)
@@ -39,6 +44,14 @@ def run(args: argparse.Namespace) -> int:
                    args.reach_mode)
     if opts.load_kg < 0 or opts.resolution < 4:
         raise JackpyError("--load must be >= 0 and --resolution >= 4")
+    if args.ergonomics is not None:  # bad methods or task parameters fail before any work
+        from jackpy.ergonomics import parse_methods
+        from jackpy.ergonomics.inputs import load_task
+
+        opts.ergonomics = parse_methods(args.ergonomics)
+        opts.ergo_task = load_task(args.ergo_task, None if args.ergo_task else opts.load_kg)
+        if "niosh" in opts.ergonomics and not opts.ergo_task.lifts:
+            raise JackpyError("--ergonomics niosh needs a lifting task: give --ergo-task with \"lifts\"")
     for ref in opts.reach + opts.view:
         resolve_target(wp.env, ref)  # unknown names fail before any work
     results = write_report(wp, opts, args.output, render=not args.no_pictures)

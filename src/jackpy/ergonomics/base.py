@@ -194,13 +194,15 @@ AssessFn = Callable[[Figure, Task, Any, "FKResult | None"], Assessment]
 @dataclass(frozen=True)
 class Method:
     """A registered assessment: ``name`` (CLI name), ``title``, ``source`` (citation),
-    ``validity`` (the range the method holds for, as text) and ``assess``."""
+    ``validity`` (the range the method holds for, as text), ``assess`` and ``levels``, its lowest and
+    highest action level (for colour coding: lowest green, highest red)."""
 
     name: str
     title: str
     source: str
     validity: str
     assess: AssessFn
+    levels: tuple[int, int] = (1, 4)
 
 
 _METHODS: dict[str, Method] = {}

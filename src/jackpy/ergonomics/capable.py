@@ -105,4 +105,4 @@ def assess(figure: Figure, task: Task, posture: Posture, fk: FKResult | None = N
 
 METHOD = register(Method("capable", "Percent capable (static strength)",
                          "statics: jackpy.analysis.statics; strength: jackpy.body.strength (data/strength.csv)",
-                         VALIDITY, assess))
+                         VALIDITY, assess, (1, 3)))

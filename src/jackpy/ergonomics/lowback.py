@@ -130,4 +130,4 @@ def assess(figure: Figure, task: Task, posture: Posture, fk: FKResult | None = N
 
 METHOD = register(Method("lowback", "L5/S1 low-back compression and shear (static sagittal model)",
                          "Chaffin D.B., Andersson G.B.J. & Martin B.J. (2006) Occupational Biomechanics, 4th ed., "
-                         "ch. 6; NIOSH (1981) Work Practices Guide for Manual Lifting", VALIDITY, assess))
+                         "ch. 6; NIOSH (1981) Work Practices Guide for Manual Lifting", VALIDITY, assess, (1, 3)))

@@ -244,4 +244,4 @@ def assess(figure: Figure, task: Task, posture: Posture, fk: FKResult | None = N
 
 METHOD = register(Method("niosh", "NIOSH revised lifting equation",
                          "Waters T.R. et al. (1993) Ergonomics 36(7):749-776; Applications Manual (1994) "
-                         "DHHS (NIOSH) 94-110", VALIDITY, assess))
+                         "DHHS (NIOSH) 94-110", VALIDITY, assess, (1, 3)))

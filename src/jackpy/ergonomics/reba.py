@@ -135,4 +135,4 @@ def assess(figure: Figure, task: Task, posture: Posture, fk: FKResult | None = N
 
 
 METHOD = register(Method("reba", "REBA (Rapid Entire Body Assessment)",
-                         "Hignett S. & McAtamney L. (2000) Applied Ergonomics 31(2):201-205", VALIDITY, assess))
+                         "Hignett S. & McAtamney L. (2000) Applied Ergonomics 31(2):201-205", VALIDITY, assess, (0, 4)))
