@@ -42,12 +42,15 @@ MEASURE_OF = {"stature": "stature", "sitting_height": "sitting_height", "weight"
               "bideltoid_breadth": "bideltoid_breadth", "hip_breadth_sitting": "hip_breadth_sitting",
               "foot_length": "foot_length"}
 #: secondary ANSUR II key dimension -> SASS dimension it sets (in standard scores: the population
-#: tables' definitions differ from ANSUR's for some, so the SASS value is mean + z * sd of its own table)
+#: tables' definitions differ from ANSUR's for some, so the SASS value is mean + z * sd of its own table).
+#: The upper arm's girth is left at the 50th-percentile body's: with thin upper arms the figure's
+#: shoulder-top surface, not the deltoid, would set the measured bideltoid breadth (a kink the
+#: linear calibration cannot follow)
 SECONDARY = {"hand_length": "hand.length", "hand_breadth": "hand.breadth", "biacromial_breadth": "shoulder.breadth",
              "chest_breadth": "chest.breadth", "chest_depth": "chest.depth", "waist_breadth": "waist.breadth",
              "waist_depth": "waist.depth", "buttock_depth": "buttock.depth", "foot_breadth": "foot.breadth",
              "head_breadth": "head.breadth", "head_length": "head.length", "neck_circumference": "neck.breadth",
-             "biceps_circumference_flexed": "upper_arm.breadth", "forearm_circumference_flexed": "forearm.breadth",
+             "forearm_circumference_flexed": "forearm.breadth",
              "wrist_circumference": "wrist.breadth", "thigh_circumference": "thigh.breadth",
              "calf_circumference": "calf.breadth", "bimalleolar_breadth": "ankle.breadth"}
 LEGS = ("foot.height", "shank.length", "thigh.length")
