@@ -164,7 +164,7 @@ def test_load_dispatches_on_extension(tmp_path: Path) -> None:
 def test_missing_geometry_names_file_and_segment(tmp_path: Path) -> None:
     p = tmp_path / "m.fig"
     p.write_text('figure m { segment body { psurf = "nowhere.pss"; } }')
-    with pytest.raises(FigureError, match=r"m\.fig: figure 'm' segment 'body': geometry file 'nowhere\.pss' not found"):
+    with pytest.raises(FigureError, match=r"m\.fig:1:35: figure 'm' segment 'body': geometry file 'nowhere\.pss' not found"):
         read_figures(p)
     fig = read_figures(p, require_geometry=False)[0]
     assert fig.segment("body").psurf.mesh is None
@@ -181,7 +181,7 @@ def test_missing_geometry_names_file_and_segment(tmp_path: Path) -> None:
     ("figure f {\n  segment a @ { }\n}", "2:13", "unexpected character '@'"),
     ("figure f {\n  segment a { site s->location = trans(1furlong,0,0); }\n}", "2:41",
      "expected a unit (cm, mm, m, in, deg, rad), found 'furlong'"),
-    ("figure f {\n  segment a { }\n", "3:1", "expected 'segment', 'joint', 'group', 'root', 'location' or '}', "
+    ("figure f {\n  segment a { }\n", "3:1", "expected 'segment', 'joint', 'group', 'root', 'location', 'human' or '}', "
      "found end of file"),
     ("figure f {\n  joint j { type = Q(z); }\n}", "2:20", "expected a DOF R(axis) or T(axis), found 'Q'"),
     ("figure f {\n  segment a { site s->location = trans(1cm,2cm); }\n}", "2:47", "expected ',', found ')'"),

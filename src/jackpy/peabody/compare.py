@@ -6,6 +6,7 @@ import os
 
 import numpy as np
 
+from jackpy.peabody.groups import LinearDriver, driver_kind
 from jackpy.peabody.model import Figure
 
 
@@ -15,7 +16,7 @@ def figure_differences(a: Figure, b: Figure, tol: float = 1e-9,
 
     Compares names, root, location, segments (psurf file and transform, attribute, mass, com,
     inertia, sites), joints (connection, DOF kinds, axes, limits, displacement) and groups (joints,
-    angles, driver, limits). Numbers agree within ``tol`` (metres, radians). With ``dirs`` the psurf
+    angles, driver kind and parameters, limits) and the human marker. Numbers agree within ``tol`` (metres, radians). With ``dirs`` the psurf
     file names are compared as paths resolved against ``dirs[0]`` and ``dirs[1]``.
     """
     out: list[str] = []
@@ -68,6 +69,12 @@ def figure_differences(a: Figure, b: Figure, tol: float = 1e-9,
         same(f"{w} angles", ga.angle_names, gb.angle_names)
         for attr in ("lower", "upper", "A", "b", "angles"):
             close(f"{w} {attr}", getattr(ga, attr), getattr(gb, attr))
-        for attr in ("matrix", "offset"):
-            close(f"{w} driver {attr}", getattr(ga.driver, attr, np.nan), getattr(gb.driver, attr, np.nan))
+        ka, kb = driver_kind(ga.driver), driver_kind(gb.driver)
+        same(f"{w} driver", ka or type(ga.driver).__name__, kb or type(gb.driver).__name__)
+        if isinstance(ga.driver, LinearDriver) and isinstance(gb.driver, LinearDriver):
+            for attr in ("matrix", "offset"):
+                close(f"{w} driver {attr}", getattr(ga.driver, attr), getattr(gb.driver, attr))
+        elif ka is not None and ka == kb:
+            same(f"{w} driver parameters", ga.driver.to_dict(), gb.driver.to_dict())  # type: ignore[attr-defined]
+    same("human", a.human, b.human)
     return out

@@ -41,6 +41,32 @@ class Mesh:
         return np.stack([self.vertices.min(axis=0), self.vertices.max(axis=0)])
 
 
+class SourcePosition:
+    """Where a name was written in a text file: ``file:line:column``, computed when asked (so a
+    reader pays nothing for positions no error needs). Copies share it (it is immutable)."""
+
+    __slots__ = ("file", "_text", "_index", "_where")
+
+    def __init__(self, file: str, text: str, index: int) -> None:
+        self.file, self._text, self._index = file, text, index
+        self._where: str | None = None
+
+    def text(self) -> str:
+        """``file:line:column`` of the name."""
+        if self._where is None:
+            from jackpy.peabody.lexer import token_position
+
+            line, col = token_position(self._text, self._index)
+            self._where, self._text = f"{self.file}:{line}:{col}", ""
+        return self._where
+
+    def __deepcopy__(self, memo: dict) -> SourcePosition:
+        return self
+
+    def __copy__(self) -> SourcePosition:
+        return self
+
+
 @dataclass
 class Psurf:
     """A segment's geometry reference: a file name times a transform (``"leg.pss" * scale(...)``).
@@ -54,6 +80,8 @@ class Psurf:
     transform: np.ndarray = field(default_factory=lambda: np.eye(4))
     mesh: Mesh | None = None
     scale_text: list[tuple[str, tuple[float, ...]]] = field(default_factory=list)
+    #: where the file name was written (for errors about that file), when read from text
+    origin: SourcePosition | None = field(default=None, compare=False, repr=False)
 
     def posed_mesh(self) -> Mesh | None:
         """The mesh in the segment frame (``transform`` applied), or ``None``."""

@@ -9,8 +9,9 @@ angles. :class:`VariableMap` turns a figure with groups into one vector of free 
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Protocol
+from typing import TYPE_CHECKING, Protocol, Union
 
 import numpy as np
 
@@ -35,6 +36,49 @@ class Driver(Protocol):
         ...
 
 
+#: a driver parameter as a file can hold it
+DriverParam = Union[float, int, bool, str]
+
+#: driver kinds a Peabody file can name (``driver = KIND(key = value, ...)``): kind -> a function
+#: building the driver from its parameters (``cls.from_dict``). Modules outside peabody register
+#: their kinds with :func:`register_driver` when imported (``jackpy.body`` registers ``spine`` and
+#: ``shoulder``). A :class:`LinearDriver` needs no kind: it is written as ``driver = matrix(...)``.
+DRIVER_KINDS: dict[str, Callable[[dict[str, DriverParam]], "Driver"]] = {}
+
+
+#: driver kinds registered by importing a module, imported when a file first names the kind; the
+#: application layer fills it (the commands add the standard human's ``spine`` and ``shoulder``),
+#: so peabody itself imports nothing above it and pays nothing for files without such groups
+DRIVER_MODULES: dict[str, str] = {}
+
+
+def known_driver(kind: str) -> bool:
+    """True when ``kind`` is registered, importing its module from :data:`DRIVER_MODULES` if needed."""
+    if kind not in DRIVER_KINDS and kind in DRIVER_MODULES:
+        import importlib
+
+        importlib.import_module(DRIVER_MODULES[kind])
+    return kind in DRIVER_KINDS
+
+
+def register_driver(kind: str, from_dict: Callable[[dict[str, DriverParam]], "Driver"]) -> None:
+    """Make driver ``kind`` readable from Peabody files; its class must have ``kind`` and
+    ``to_dict()`` (parameters of the types in :data:`DriverParam`) so the writer can write it."""
+    DRIVER_KINDS[kind] = from_dict
+
+
+def driver_kind(driver: object) -> str | None:
+    """The registered kind of ``driver`` (``None`` when it has no file form)."""
+    kind = getattr(driver, "kind", None)
+    return kind if isinstance(kind, str) and kind in DRIVER_KINDS and hasattr(driver, "to_dict") else None
+
+
+def make_driver(kind: str, params: dict[str, DriverParam]) -> "Driver":
+    """A driver of a registered ``kind`` from its parameters; KeyError for an unknown kind,
+    FigureError/ValueError/TypeError for bad parameters (the reader adds the position)."""
+    return DRIVER_KINDS[kind](params)
+
+
 @dataclass
 class LinearDriver:
     """Member displacements ``matrix @ theta + offset``."""
@@ -56,6 +100,7 @@ class LinearDriver:
 
     def jacobian(self, theta: np.ndarray) -> np.ndarray:
         return self.matrix
+
 
 
 def driver_batch(driver: Driver, thetas: np.ndarray) -> np.ndarray:

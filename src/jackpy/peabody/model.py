@@ -14,6 +14,7 @@ DOF at zero the two sites coincide.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterator
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING
@@ -48,17 +49,38 @@ class Dof:
     def __post_init__(self) -> None:
         if self.kind not in ("R", "T"):
             raise FigureError(f"DOF kind must be 'R' or 'T', not {self.kind!r}")
-        a = np.asarray(self.axis, dtype=float).reshape(3)
-        n = np.linalg.norm(a)
-        if not np.isfinite(n) or n < 1e-12:
-            raise FigureError(f"DOF axis {tuple(a)} has no direction")
-        self.axis = a / n
+        x, y, z = (float(v) for v in np.asarray(self.axis, dtype=float).reshape(3))
+        big = max(abs(x), abs(y), abs(z))
+        if not (math.isfinite(big) and big >= 1e-12):
+            raise FigureError(f"DOF axis ({x:g}, {y:g}, {z:g}) has no direction")
+        x, y, z = x / big, y / big, z / big  # (scaled first: the norm of a huge axis would overflow)
+        n = math.sqrt(x * x + y * y + z * z)
+        self.axis = np.array([x / n, y / n, z / n])
 
     def transform(self, value: float) -> np.ndarray:
         """The 4x4 transform of this DOF at ``value``."""
         if self.kind == "R":
             return rotation(self.axis, value)
         return translation(*(self.axis * value))
+
+
+@dataclass
+class HumanMarker:
+    """What makes a figure the standard human of ``jackpy.body`` (``human { ... }`` in a ``.fig``).
+
+    ``population``, ``sex`` and ``percentile`` name the body; ``mass`` (kg), ``eye_drop`` (m),
+    ``dims`` (dimension name -> metres) and ``overrides`` (name -> metres, kilograms for ``mass``)
+    are its specification, so the body is restored exactly even if the population tables change.
+    The peabody package only carries it; :mod:`jackpy.body.saved` turns it back into a body.
+    """
+
+    population: str
+    sex: str
+    percentile: float
+    mass: float = 0.0
+    eye_drop: float = 0.0
+    dims: dict[str, float] = field(default_factory=dict)
+    overrides: dict[str, float] = field(default_factory=dict)
 
 
 @dataclass
@@ -124,6 +146,14 @@ class Joint:
     def upper(self) -> np.ndarray:
         return np.array([d.upper for d in self.dofs])
 
+    def set_dof(self, k: int, value: float) -> float:
+        """Set DOF ``k`` to ``value`` (rad or m) clamped to its limits; returns the value set."""
+        d = self.dofs[k]
+        disp = self.displacement.copy()
+        disp[k] = float(np.clip(value, d.lower, d.upper))
+        self.displacement = disp
+        return float(disp[k])
+
     def transform(self, displacement: np.ndarray | None = None) -> np.ndarray:
         """Displacement transform ``D`` (to-site frame in from-site frame): ``D_n @ ... @ D_1``."""
         q = self.displacement if displacement is None else displacement
@@ -158,6 +188,8 @@ class Figure:
         self.groups: dict[str, JointGroup] = {}
         self.root: tuple[str, str] | None = None
         self.location: np.ndarray = np.eye(4)
+        #: set when the figure is a saved standard human (see :class:`HumanMarker`)
+        self.human: HumanMarker | None = None
         self._kin: Kinematics | None = None
         self._topology_version = 0
 
@@ -258,10 +290,6 @@ class Figure:
     @property
     def upper(self) -> np.ndarray:
         return np.array([d.upper for j in self.joints.values() for d in j.dofs])
-
-    def clamp_to_limits(self) -> None:
-        """Clamp every displacement into its DOF limits."""
-        self.q = np.clip(self.q, self.lower, self.upper)
 
     # ----- kinematics -----------------------------------------------------------------------
     def kinematics(self) -> "Kinematics":
@@ -375,11 +403,15 @@ class Figure:
 class Environment:
     """A world of figures (articulated or plain objects), by name, each placed by its ``location``.
 
-    ``includes`` records the figure files an ``.env`` file included, for writing it back.
+    ``includes`` records the figure files an ``.env`` file included, for writing it back;
+    ``outside`` the referenced files that lay outside the allowed folders (see
+    :mod:`jackpy.peabody.paths`).
     """
 
     figures: dict[str, Figure] = field(default_factory=dict)
     includes: list[str] = field(default_factory=list)
+    #: files read from outside the scene's folder and the library path (allowed explicitly)
+    outside: list[str] = field(default_factory=list)
 
     def add(self, figure: Figure) -> Figure:
         if figure.name in self.figures:

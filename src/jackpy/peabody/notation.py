@@ -60,11 +60,38 @@ def prim_matrix(prim: Prim) -> np.ndarray:
     raise ValueError(f"unknown transform primitive {name!r}")
 
 
+def _fast_matrix(prim: Prim) -> np.ndarray:
+    """:func:`prim_matrix` built in one array construction (the reader calls it per site)."""
+    name, a = prim
+    if name == "trans":
+        return np.array([[1.0, 0, 0, a[0] * CM], [0, 1.0, 0, a[1] * CM], [0, 0, 1.0, a[2] * CM], [0, 0, 0, 1.0]])
+    if name in ("rotx", "roty", "rotz"):
+        c, s = math.cos(a[0] * DEG), math.sin(a[0] * DEG)
+        if name == "rotx":
+            return np.array([[1.0, 0, 0, 0], [0, c, -s, 0], [0, s, c, 0], [0, 0, 0, 1.0]])
+        if name == "roty":
+            return np.array([[c, 0, s, 0], [0, 1.0, 0, 0], [-s, 0, c, 0], [0, 0, 0, 1.0]])
+        return np.array([[c, -s, 0, 0], [s, c, 0, 0], [0, 0, 1.0, 0], [0, 0, 0, 1.0]])
+    if name == "rot":
+        big = max(abs(a[0]), abs(a[1]), abs(a[2]))
+        x, y, z = a[0] / big, a[1] / big, a[2] / big
+        n = math.sqrt(x * x + y * y + z * z)
+        x, y, z = x / n, y / n, z / n
+        c, s = math.cos(a[3] * DEG), math.sin(a[3] * DEG)
+        C = 1.0 - c
+        return np.array([[c + x * x * C, x * y * C - z * s, x * z * C + y * s, 0],
+                         [y * x * C + z * s, c + y * y * C, y * z * C - x * s, 0],
+                         [z * x * C - y * s, z * y * C + x * s, c + z * z * C, 0], [0, 0, 0, 1.0]])
+    return prim_matrix(prim)
+
+
 def compose(prims: list[Prim]) -> np.ndarray:
     """Column matrix of the file product ``p1 * p2 * ... * pn``, i.e. ``pn @ ... @ p2 @ p1``."""
-    out = np.eye(4)
-    for p in prims:
-        out = prim_matrix(p) @ out
+    if not prims:
+        return np.eye(4)
+    out = _fast_matrix(prims[0])
+    for p in prims[1:]:
+        out = _fast_matrix(p) @ out
     return out
 
 
@@ -116,11 +143,15 @@ def decompose(m: np.ndarray, tol: float = 1e-10) -> list[Prim]:
 
 
 def fmt(v: float) -> str:
-    """A float as short exact-enough text (15 significant digits, no ``-0``)."""
+    """A float as the shortest text that reads back as the same float (``repr``), no ``-0``;
+    a non-finite value raises ValueError (the reader never accepts one)."""
+    v = float(v)
     if not math.isfinite(v):
         raise ValueError(f"cannot write the non-finite value {v}")
-    s = format(v, ".15g")
-    return "0" if s in ("-0", "0") else s
+    if v == 0.0:
+        return "0"
+    s = repr(v)
+    return s[:-2] if s.endswith(".0") else s
 
 
 def prims_text(prims: list[Prim]) -> str:

@@ -22,7 +22,9 @@ import numpy as np
 from jackpy.atomic import atomic_write_text
 from jackpy.errors import ImportCADError, ParseError
 from jackpy.peabody.geometry import Mesh
+from jackpy.peabody.lexer import MAX_MAGNITUDE
 from jackpy.peabody.notation import CM, fmt
+from jackpy.peabody.paths import MAX_MESH_BYTES, read_limited
 
 #: mesh file extensions read through trimesh, with the size of one file unit in metres
 TRIMESH_UNITS = {".obj": CM, ".stl": CM, ".ply": CM, ".glb": 1.0, ".gltf": 1.0}
@@ -61,7 +63,10 @@ def parse_psurf(text: str, filename: str = "<string>") -> Mesh:
                 except ValueError:
                     value = float("nan")
                 if not np.isfinite(value):
-                    raise ParseError(f"expected a coordinate (cm), found {word!r}", filename, lineno, col)
+                    raise ParseError(f"expected a coordinate (cm), found {word[:40]!r}", filename, lineno, col)
+                if abs(value) > MAX_MAGNITUDE:
+                    raise ParseError(f"coordinate {word[:40]} out of range (magnitude at most {MAX_MAGNITUDE:g} cm)",
+                                     filename, lineno, col)
                 xyz.append(value * CM)
             vertices.append((xyz[0], xyz[1], xyz[2]))
         elif key == "f":
@@ -73,19 +78,20 @@ def parse_psurf(text: str, filename: str = "<string>") -> Mesh:
                 # (a bounded length first: int() refuses strings of more than 4300 digits)
                 if (not (word.isascii() and word.isdigit()) or len(word) > 18
                         or not 1 <= int(word) <= len(vertices)):
-                    raise ParseError(f"expected a vertex index in 1..{len(vertices)}, found {word!r}",
+                    raise ParseError(f"expected a vertex index in 1..{len(vertices)}, found {word[:40]!r}",
                                      filename, lineno, col)
                 idx.append(int(word) - 1)
             faces.extend((idx[0], idx[k], idx[k + 1]) for k in range(1, len(idx) - 1))
         else:
-            raise ParseError(f"expected 'v' or 'f', found {key!r}", filename, lineno, kcol)
+            raise ParseError(f"expected 'v' or 'f', found {key[:40]!r}", filename, lineno, kcol)
     return Mesh(np.array(vertices, dtype=float).reshape(-1, 3), np.array(faces, dtype=np.int64).reshape(-1, 3))
 
 
-def read_psurf(path: str | os.PathLike[str]) -> Mesh:
+def read_psurf(path: str | os.PathLike[str], limit: int = MAX_MESH_BYTES) -> Mesh:
     """Read a ``.pss`` file (centimetres) into a mesh in metres; text that is not UTF-8 raises
-    ParseError at the first bad byte."""
-    data = Path(path).read_bytes()
+    ParseError at the first bad byte; a file that is not regular or is over ``limit`` bytes
+    raises OSError."""
+    data = read_limited(path, limit)
     try:
         text = data.decode("utf-8")
     except UnicodeDecodeError as exc:
@@ -114,7 +120,40 @@ def write_psurf(path: str | os.PathLike[str], mesh: Mesh, comment: str | None = 
     atomic_write_text(path, psurf_to_text(mesh, comment))
 
 
-def load_mesh(path: str | os.PathLike[str]) -> Mesh:
+def check_obj_text(text: str, filename: str) -> None:
+    """Check the records of OBJ text that trimesh passes over silently: every ``v`` coordinate a
+    finite number within :data:`MAX_MAGNITUDE`, every ``f`` index a vertex that exists (1-based,
+    or negative counting back; 0 is invalid). ParseError at the line and column."""
+    count = 0
+    for lineno, line in enumerate(text.split("\n"), start=1):
+        stripped = line.lstrip()
+        if stripped.startswith("v ") or stripped.startswith("v\t"):
+            count += 1
+            pos = 0
+            for word in stripped.split()[1:4]:
+                pos = line.index(word, pos)
+                try:
+                    value = float(word)
+                except ValueError:
+                    value = float("nan")
+                if not (np.isfinite(value) and abs(value) <= MAX_MAGNITUDE):
+                    raise ParseError(f"vertex coordinate {word[:40]!r} is not a finite number of at most "
+                                     f"{MAX_MAGNITUDE:g}", filename, lineno, pos + 1)
+                pos += len(word)
+        elif stripped.startswith("f ") or stripped.startswith("f\t"):
+            pos = 0
+            for word in stripped.split()[1:]:
+                pos = line.index(word, pos)
+                head = word.split("/", 1)[0]
+                ok = head.lstrip("-").isdigit() and len(head) < 19
+                k = int(head) if ok else 0
+                if not ok or k == 0 or k > count or k < -count:
+                    raise ParseError(f"face refers to vertex {head[:40]!r}; this file has {count} vertices so far "
+                                     f"(indices 1..{count}, or -1..-{count})", filename, lineno, pos + 1)
+                pos += len(word)
+
+
+def load_mesh(path: str | os.PathLike[str], limit: int = MAX_MESH_BYTES) -> Mesh:
     """Load geometry by extension: ``.pss`` (cm), ``.obj``/``.stl``/``.ply`` (cm) or ``.glb``/``.gltf`` (m).
 
     The result is in metres. A malformed ``.pss`` raises ParseError; a file trimesh cannot read
@@ -123,19 +162,11 @@ def load_mesh(path: str | os.PathLike[str]) -> Mesh:
     p = Path(path)
     ext = p.suffix.lower()
     if ext == ".pss":
-        return read_psurf(p)
+        return read_psurf(p, limit)
     if ext not in TRIMESH_UNITS:
         raise ImportCADError(f"{p}: unknown geometry format {ext!r} (use .pss, "
                              + ", ".join(TRIMESH_UNITS) + ")")
-    if not p.exists():
-        raise FileNotFoundError(f"{p}: no such file")
-    import trimesh
+    from jackpy.peabody.meshfile import read_mesh_file
 
-    try:
-        loaded = trimesh.load(str(p), force="mesh", process=False)
-    except Exception as exc:  # trimesh raises many kinds of error for a bad file
-        raise ImportCADError(f"{p}: cannot read mesh: {exc}") from exc
-    if not isinstance(loaded, trimesh.Trimesh):
-        raise ImportCADError(f"{p}: no triangle mesh found")
-    return Mesh(np.asarray(loaded.vertices, dtype=float) * TRIMESH_UNITS[ext],
-                np.asarray(loaded.faces, dtype=np.int64))
+    mesh = read_mesh_file(p, ext[1:], limit)  # (checked: regular file, size, counts, finite, indices)
+    return Mesh(mesh.vertices * TRIMESH_UNITS[ext], mesh.faces)

@@ -19,12 +19,13 @@ import numpy as np
 
 from jackpy.atomic import atomic_write_text
 from jackpy.errors import FigureError
-from jackpy.peabody.groups import LinearDriver
+from jackpy.peabody.groups import LinearDriver, driver_kind
 from jackpy.peabody.model import (
     DEFAULT_ROTATION_LIMITS,
     DEFAULT_TRANSLATION_LIMITS,
     Environment,
     Figure,
+    HumanMarker,
     Joint,
     Segment,
 )
@@ -103,20 +104,26 @@ def _joint_lines(j: Joint) -> list[str]:
 def _group_lines(fig: Figure, name: str) -> list[str]:
     g = fig.groups[name]
     ind = _IND * 2
-    if not isinstance(g.driver, LinearDriver):
-        raise FigureError(f"figure {fig.name!r}: cannot write group {g.name!r}: only linear drivers "
-                          "have a Peabody form")
     kinds = [d.kind for jn in g.joints for d in fig.joint(jn).dofs]
-    per_unit = np.array([1.0 if k == "R" else DEG / CM for k in kinds])
-    matrix = g.driver.matrix * per_unit[:, None]
-    rows = ", ".join("(" + ", ".join(fmt(v) for v in row) + ")" for row in matrix)
+    if isinstance(g.driver, LinearDriver):
+        per_unit = np.array([1.0 if k == "R" else DEG / CM for k in kinds])
+        matrix = g.driver.matrix * per_unit[:, None]
+        driver = "matrix(" + ", ".join("(" + ", ".join(fmt(v) for v in row) + ")" for row in matrix) + ")"
+    else:
+        kind = driver_kind(g.driver)
+        if kind is None:
+            raise FigureError(f"figure {fig.name!r}: cannot write group {g.name!r}: its driver "
+                              f"{type(g.driver).__name__} has no registered kind (jackpy.peabody.groups."
+                              "register_driver)")
+        driver = f"{kind}(" + ", ".join(f"{_ident(k)} = {_param(v)}" for k, v in g.driver.to_dict().items()) + ")"
     angle_kinds = ["R"] * g.nangles
     lines = [f"{_IND}group {_ident(g.name)} {{",
              f"{ind}joints = {', '.join(_ident(n) for n in g.joints)};",
              f"{ind}angles = {', '.join(_ident(n) for n in g.angle_names)};",
-             f"{ind}driver = matrix({rows});"]
-    if np.any(g.driver.offset != 0):
-        lines.append(f"{ind}offset = {_values(g.driver.offset, kinds)};")
+             f"{ind}driver = {driver};"]
+    offset = getattr(g.driver, "offset", None) if isinstance(g.driver, LinearDriver) else None
+    if offset is not None and np.any(offset != 0):
+        lines.append(f"{ind}offset = {_values(offset, kinds)};")
     lines.append(f"{ind}lower = {_values(g.lower, angle_kinds)};")
     lines.append(f"{ind}upper = {_values(g.upper, angle_kinds)};")
     for row, b in zip(g.A, g.b):
@@ -133,8 +140,35 @@ def _group_lines(fig: Figure, name: str) -> list[str]:
     return lines
 
 
+def _param(v: object) -> str:
+    """A driver parameter as Peabody text: ``true``/``false``, a number or a quoted string."""
+    if isinstance(v, bool):
+        return "true" if v else "false"
+    if isinstance(v, (int, float, np.integer, np.floating)):
+        return fmt(float(v))
+    if isinstance(v, str):
+        return _quote(v)
+    raise FigureError(f"cannot write the driver parameter {v!r} (numbers, true/false or text only)")
+
+
+def _human_lines(h: HumanMarker) -> list[str]:
+    ind = _IND * 2
+    lines = [f"{_IND}human {{", f"{ind}population = {_quote(h.population)};", f"{ind}sex = {_quote(h.sex)};",
+             f"{ind}percentile = {fmt(h.percentile)};"]
+    if h.mass:
+        lines.append(f"{ind}mass = {fmt(h.mass)}kg;")
+    if h.eye_drop:  # (lengths in metres here: they read back bit for bit)
+        lines.append(f"{ind}eye_drop = {fmt(h.eye_drop)}m;")
+    lines += [f"{ind}dim {_quote(k)} = {fmt(v)}m;" for k, v in h.dims.items()]
+    lines += [f"{ind}override {_quote(k)} = " + (f"{fmt(v)}kg;" if k == "mass" else f"{fmt(v)}m;")
+              for k, v in h.overrides.items()]
+    return lines + [f"{_IND}}}"]
+
+
 def _figure_text(fig: Figure, relocate: Callable[[str], str]) -> str:
     lines = [f"figure {_ident(fig.name)} {{"]
+    if fig.human is not None:
+        lines += _human_lines(fig.human)
     for seg in fig.segments.values():
         lines += _segment_lines(seg, relocate)
     for j in fig.joints.values():
@@ -187,7 +221,7 @@ def environment_to_text(env: Environment, base_dir: str | os.PathLike[str], *,
     ``base_dir`` is where the includes are found (their figure names decide which figures are
     written as includes); ``relocate`` maps include and psurf file names (default: unchanged).
     """
-    from jackpy.peabody.reader import parse_figures
+    from jackpy.peabody.reader import parse_figures, read_text
 
     rel = relocate or (lambda p: p)
     included: list[str] = []
@@ -195,7 +229,7 @@ def environment_to_text(env: Environment, base_dir: str | os.PathLike[str], *,
     for inc in env.includes:
         path = Path(base_dir) / inc
         try:
-            names = [f.name for f in parse_figures(path.read_text(encoding="utf-8"), str(path))]
+            names = [f.name for f in parse_figures(read_text(path), str(path))]
         except OSError as exc:
             raise FigureError(f"cannot write environment: included file {inc!r}: "
                               f"{exc.strerror or exc}") from None

@@ -21,8 +21,9 @@ from pathlib import Path
 
 import numpy as np
 
-from jackpy.errors import ImportCADError
+from jackpy.errors import ImportCADError, ParseError
 from jackpy.peabody.geometry import Mesh, Psurf
+from jackpy.peabody.meshfile import DECLARED_UNITS, read_mesh_file
 from jackpy.peabody.model import Environment, Figure, Segment, Site
 from jackpy.peabody.transforms import rotation, scaling, translation
 
@@ -49,6 +50,9 @@ _EXTRAS: dict[str, tuple[tuple[str, str], ...]] = {
     "step": (("cascadio", "cascadio"),),
 }
 
+#: largest CAD file imported, bytes
+MAX_CAD_BYTES = 1024 * 2**20
+
 #: triangle count above which :meth:`CADObject.display_mesh` decimates by default
 DISPLAY_TRIANGLES = 200_000
 
@@ -63,8 +67,10 @@ class ImportSettings:
     up: str = "y"
 
     def conversion(self) -> np.ndarray:
-        """4x4 transform from file coordinates to the object frame (metres, y up)."""
-        s = UNITS[self.units]
+        """4x4 transform from file coordinates to the object frame (metres, y up). Formats that
+        declare their unit (glTF, 3MF, COLLADA, STEP) are read in metres: ``units`` does not
+        scale them again."""
+        s = 1.0 if declares_units(self.source) else UNITS[self.units]
         return UP_AXES[self.up] @ scaling(s, s, s)
 
 
@@ -187,11 +193,16 @@ def add_cad(env: Environment, path: str | os.PathLike, units: str = "m", up: str
     return obj
 
 
-def read_mesh(path: Path) -> Mesh:
-    """The triangles of a CAD file in file units and axes (all parts concatenated, their scene
-    transforms applied)."""
-    import trimesh
+def declares_units(source: str | os.PathLike) -> bool:
+    """True when the file's format carries its own unit (read in metres, whatever ``units`` says)."""
+    return FORMATS.get(Path(source).suffix.lower()) in DECLARED_UNITS
 
+
+def read_mesh(path: Path, limit: int = MAX_CAD_BYTES) -> Mesh:
+    """The triangles of a CAD file in file axes (all parts concatenated, their scene transforms
+    applied): file units for OBJ/STL/PLY/OFF, metres for the formats that declare a unit. Refuses
+    with one line what is not a regular file, over ``limit`` bytes, a zip bomb, a false declared
+    count, a glTF reference outside its folder, non-finite or out-of-range vertices, bad faces."""
     ext = path.suffix.lower()
     if ext not in FORMATS:
         raise ImportCADError(f"{path}: unsupported CAD format {ext or '(no extension)'!r}; "
@@ -203,23 +214,14 @@ def read_mesh(path: Path) -> Mesh:
         except ImportError:
             raise ImportCADError(f"{path}: reading {kind.upper()} needs the optional package "
                                  f"{package!r} (pip install {package}, or jackpy[cad])") from None
-    if not path.is_file():
+    if not os.path.lexists(path):
         raise ImportCADError(f"{path}: no such file")
     try:
-        loaded = trimesh.load(str(path), file_type=kind, force="mesh", process=False)
-    except ImportCADError:
-        raise
-    except Exception as exc:  # trimesh and its readers raise anything on malformed input
-        raise ImportCADError(f"{path}: cannot read {kind.upper()} file: {_one_line(exc)}") from None
-    vertices = np.asarray(getattr(loaded, "vertices", np.zeros((0, 3))), dtype=float)
-    faces = np.asarray(getattr(loaded, "faces", np.zeros((0, 3))))
-    if faces.ndim != 2 or faces.shape[1] != 3 or len(faces) == 0:
-        raise ImportCADError(f"{path}: no triangles found in the {kind.upper()} file")
-    if not np.isfinite(vertices).all():
-        raise ImportCADError(f"{path}: vertex coordinates are not finite numbers")
-    if faces.min() < 0 or faces.max() >= len(vertices):
-        raise ImportCADError(f"{path}: a face refers to a vertex that does not exist")
-    return Mesh(vertices, faces)
+        return read_mesh_file(path, kind, limit)
+    except OSError as exc:
+        raise ImportCADError(f"{path}: cannot read: {exc.strerror or exc}") from None
+    except ParseError as exc:
+        raise ImportCADError(str(exc)) from None
 
 
 def decimate(mesh: Mesh, max_triangles: int) -> Mesh:
@@ -252,7 +254,3 @@ def decimate(mesh: Mesh, max_triangles: int) -> Mesh:
     remap[used] = np.arange(len(used))
     return Mesh(newv[used], remap[ff])
 
-
-def _one_line(exc: BaseException) -> str:
-    text = " ".join(str(exc).split()) or type(exc).__name__
-    return text if len(text) <= 200 else text[:197] + "..."
