@@ -135,11 +135,11 @@ def rescale_in_place(figure: Figure, sex: str, percentile: float, population: st
 
 
 def peabody_copy(figure: Figure, psurf_dir: str = "") -> Figure:
-    """A figure sharing ``figure``'s segments and joints for writing as Peabody text: psurf names are
-    prefixed with ``psurf_dir`` and only linear joint groups are kept (the spine and shoulder drivers
-    have no Peabody form; their member displacements are written, and :func:`attach_groups` restores
-    the groups after reading)."""
-    from jackpy.peabody.groups import LinearDriver
+    """A figure sharing ``figure``'s segments, joints and groups for writing as Peabody text: psurf
+    names are prefixed with ``psurf_dir``; the spine and shoulder groups are written with their
+    driver kinds, and a human marker (:func:`jackpy.body.saved.human_marker`) carries the body
+    specification, so the file reads back as the same human."""
+    from jackpy.body.saved import human_marker
     from jackpy.peabody.model import Segment
 
     out = Figure(figure.name)
@@ -149,8 +149,10 @@ def peabody_copy(figure: Figure, psurf_dir: str = "") -> Figure:
             ps = Psurf(f"{psurf_dir}/{seg.name}.pss" if psurf_dir else f"{seg.name}.pss", ps.transform, ps.mesh)
         out.segments[seg.name] = Segment(seg.name, ps, seg.attribute, seg.sites, seg.mass, seg.com, seg.inertia)
     out.joints = dict(figure.joints)
-    out.groups = {n: g for n, g in figure.groups.items() if isinstance(g.driver, LinearDriver)}
+    out.groups = dict(figure.groups)
     out.root, out.location = figure.root, figure.location.copy()
+    spec = getattr(figure, "body_spec", None)
+    out.human = human_marker(spec) if spec is not None else figure.human
     return out
 
 

@@ -35,7 +35,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from jackpy.peabody.groups import JointGroup
+from jackpy.peabody.groups import JointGroup, register_driver
 
 #: group angle names and box limits (radians)
 SHOULDER_ANGLES = ("elevation", "abduction", "twist")
@@ -76,6 +76,19 @@ def default_twist(phi_deg: float, theta_s_deg: float) -> float:
 class ShoulderDriver:
     """Group driver: (ϕ, θ, τ) radians -> clavicle (ϕ_c, θ_c) + shoulder (4 angles), radians."""
 
+    #: the driver kind in Peabody files (``driver = shoulder()``; jackpy.peabody.groups registry)
+    kind = "shoulder"
+
+    def to_dict(self) -> dict[str, float]:
+        """No parameters: the allocation is the book's (eq. 2.20-2.23)."""
+        return {}
+
+    @classmethod
+    def from_dict(cls, d: dict) -> ShoulderDriver:
+        if d:
+            raise ValueError(f"the shoulder driver has no parameters, got {sorted(d)}")
+        return cls()
+
     def __call__(self, theta: np.ndarray) -> np.ndarray:
         phi, th, tau = np.degrees(np.asarray(theta, dtype=float))
         phi_c, theta_c, _, theta_s = allocate(phi, th)
@@ -104,3 +117,6 @@ def shoulder_group(side: str) -> JointGroup:
                       [f"{side}_clavicle", f"{side}_shoulder_tilt", f"{side}_shoulder"],
                       list(SHOULDER_ANGLES), ShoulderDriver(), SHOULDER_LOWER, SHOULDER_UPPER,
                       SHOULDER_A, SHOULDER_B)
+
+
+register_driver(ShoulderDriver.kind, ShoulderDriver.from_dict)

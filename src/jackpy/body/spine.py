@@ -28,7 +28,7 @@ import numpy as np
 
 from jackpy.body.limits import spine_levels
 from jackpy.errors import FigureError
-from jackpy.peabody.groups import JointGroup
+from jackpy.peabody.groups import JointGroup, register_driver
 
 #: group angle names in order, and each one's DOF index inside a vertebral joint's type
 SPINE_ANGLES = ("flexion", "lateral", "axial")
@@ -181,6 +181,40 @@ CURL_FROM_NECK = SpineWeights(initiator=17)
 class SpineDriver:
     """Group driver: torso angles (flexion, lateral, axial) radians -> 18 x 3 vertebral displacements."""
 
+    #: the driver kind in Peabody files (``driver = spine(...)``; jackpy.peabody.groups registry)
+    kind = "spine"
+
+    def to_dict(self) -> dict[str, float | int | bool]:
+        """The parameters that rebuild this driver (:meth:`from_dict`); no resistor when absent."""
+        w = self.weights
+        out: dict[str, float | int | bool] = {"bottom": w.bottom, "top": w.top, "initiator": w.initiator,
+                                              "resistance": float(w.resistance), "spread": float(w.spread),
+                                              "zero_interpolation": bool(self.zero_interpolation)}
+        if w.resistor is not None:
+            out["resistor"] = w.resistor
+        return out
+
+    @classmethod
+    def from_dict(cls, d: dict) -> SpineDriver:
+        """The driver of :meth:`to_dict`'s parameters; FigureError/ValueError for bad ones."""
+        unknown = set(d) - {"bottom", "top", "initiator", "resistor", "resistance", "spread", "zero_interpolation"}
+        if unknown:
+            raise ValueError(f"unknown spine parameters {sorted(unknown)}")
+
+        def index(name: str, default: int) -> int:
+            v = d.get(name, default)
+            if isinstance(v, bool) or float(v) != int(v):
+                raise ValueError(f"{name} must be a vertebral joint index, not {v!r}")
+            return int(v)
+
+        resistor = index("resistor", -1) if "resistor" in d else None
+        spread = float(d.get("spread", 4.0))
+        if not spread > 0:
+            raise ValueError(f"spread must be positive, not {spread}")
+        weights = SpineWeights(index("bottom", 0), index("top", 17), index("initiator", 0), resistor,
+                               float(d.get("resistance", 0.0)), spread)
+        return cls(weights, bool(d.get("zero_interpolation", True)))
+
     def __init__(self, weights: SpineWeights | None = None, zero_interpolation: bool = True) -> None:
         levels = spine_levels()
         self.weights = weights or SpineWeights()
@@ -254,3 +288,6 @@ def spine_group(weights: SpineWeights | None = None, zero_interpolation: bool = 
     lo, hi = driver.group_limits()
     joints = [str(lv["joint"]) for lv in spine_levels()]
     return JointGroup("spine", joints, list(SPINE_ANGLES), driver, lo, hi)
+
+
+register_driver(SpineDriver.kind, SpineDriver.from_dict)
