@@ -255,9 +255,13 @@ def _arm_shapes(spec: BodySpec, sk: Skeleton, side: str, sx: float, put) -> None
                                  [(0, 0.035 * s, 0.045 * s), (0.6, 0.045 * s, 0.055 * s), (1, 0.05 * s, 0.055 * s)],
                                  AROUND_LIMB, hint=np.array([0.0, 1.0, 0.0]), cap0=0.6, cap1=1.0), "shirt")
     elbow = org[f"{side}_forearm"]
+    # the deltoid bulges out to half the bideltoid breadth (its lateral offset fades by 40 % down)
+    deltoid = max(0.0, d["bideltoid.breadth"] / 2 - abs(sh[0]) - 1.12 * ub)
     put(f"{side}_upper_arm", limb(sh + [0, 0.015 * s, 0], elbow,
                                   [(0, 1.12 * ub, 1.12 * ub), (0.3, 1.05 * ub, ub), (0.6, 0.92 * ub, 0.95 * ub),
-                                   (1, 0.86 * fb, 0.82 * fb)], hint=np.array([1.0, 0.0, 0.0])), "shirt")
+                                   (1, 0.86 * fb, 0.82 * fb)], hint=np.array([1.0, 0.0, 0.0]),
+                                  offsets=[(0, sx * deltoid, 0.0), (0.15, sx * 0.8 * deltoid, 0.0),
+                                           (0.4, 0.0, 0.0), (1, 0.0, 0.0)]), "shirt")
     fl = float(elbow[1] - pts[f"{side}_wrist"][1])
     stations = [(0, 0.84 * fb, 0.86 * fb), (0.2, 0.95 * fb, fb), (0.5, 0.78 * fb, 0.85 * fb), (1, 0.72 * wb, wb)]
     names = [f"{side}_forearm", f"{side}_forearm_mid", f"{side}_forearm_distal"]

@@ -47,6 +47,10 @@ CLAVICLE_RADIUS = 0.0605
 #: half the distance between the ischial tuberosities at 1.756 m stature, m (about 11 cm apart; Dempster
 #: 1955 / Schneider et al. 1983 seat-pressure peaks 10-13 cm apart) [proposal]
 ISCHIAL_HALF_SPACING = 0.055
+#: acromion tip lateral to the shoulder (glenohumeral) joint centre at 415 mm biacromial breadth, m:
+#: the humeral head's radius plus the greater tubercle [proposal; with it the span-true arms come
+#: out at de Leva's joint-centre lengths and ANSUR II's elbow-to-fingertip length]
+ACROMION_LATERAL = 0.040
 #: acromion above the shoulder (glenohumeral) joint centre at 415 mm biacromial breadth, m [proposal]
 ACROMION_ABOVE_SHOULDER = 0.035
 
@@ -219,7 +223,7 @@ def _arm(b: _Builder, spec: BodySpec, side: str, sx: float, yt: float, s_scale: 
     xb, zb = (0.0, 0.0, 1.0), (0.0, -1.0, 0.0)  # the book's shoulder frame: x forward, z down
     above = ACROMION_ABOVE_SHOULDER * d["shoulder.breadth"] / 0.415
     acromion_y = yt - d["acromion.drop"]
-    shoulder = np.array([sx * (d["bideltoid.breadth"] / 2 - d["upper_arm.breadth"] / 2 - 0.005),
+    shoulder = np.array([sx * (d["shoulder.breadth"] / 2 - ACROMION_LATERAL * d["shoulder.breadth"] / 0.415),
                          acromion_y - above, 0.0])
     clav = shoulder - [sx * CLAVICLE_RADIUS * d["shoulder.breadth"] / 0.415, 0.0, 0.0]
     pts[f"{side}_shoulder"] = shoulder
