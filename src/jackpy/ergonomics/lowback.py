@@ -22,6 +22,7 @@ would act).
 
 from __future__ import annotations
 
+import weakref
 from typing import Any
 
 import numpy as np
@@ -37,13 +38,13 @@ G = 9.80665
 VALIDITY = ("static (slow) sagittal-plane, symmetric exertions; L5/S1 flexion moments 0-400 N·m "
             "(the abdominal pressure regression's range)")
 
-_UPPER: dict[int, np.ndarray] = {}
+#: per flattened tree: the indices of the segments above L5/S1
+_UPPER: "weakref.WeakKeyDictionary[Kinematics, np.ndarray]" = weakref.WeakKeyDictionary()
 
 
 def upper_body(figure: Figure, kin: Kinematics) -> np.ndarray:
     """Indices (into ``kin`` segments) of the segments on the ``l5`` side of joint ``l5_s1``."""
-    key = id(kin)
-    if key not in _UPPER:
+    if kin not in _UPPER:
         if "l5_s1" not in figure.joints:
             raise FigureError(f"figure {figure.name!r} has no l5_s1 joint: the low-back model needs the standard human")
         adj: dict[str, list[str]] = {s: [] for s in figure.segments}
@@ -57,9 +58,8 @@ def upper_body(figure: Figure, kin: Kinematics) -> np.ndarray:
                 if n not in seen:
                     seen.add(n)
                     todo.append(n)
-        _UPPER.clear()
-        _UPPER[key] = np.array(sorted(kin.segment_index[s] for s in seen))
-    return _UPPER[key]
+        _UPPER[kin] = np.array(sorted(kin.segment_index[s] for s in seen))
+    return _UPPER[kin]
 
 
 def level(compression: float) -> tuple[int, str]:
@@ -80,21 +80,20 @@ def assess(figure: Figure, task: Task, posture: Posture, fk: FKResult | None = N
     mass = kin.mass[idx]
     disc = fk.segments[kin.segment_index["l5"]]
     centre, R = disc[:3, 3], disc[:3, :3]
-    g = np.array([0.0, -G, 0.0])
-    weights = mass[:, None] * g
-    force = weights.sum(axis=0)
-    moment = np.cross(coms - centre, weights).sum(axis=0)
+    r = mass @ (coms - centre)  # the weights are vertical: sum r x (m g) = g (sum m r_z, 0, -sum m r_x)
+    total = float(mass.sum())
+    mz, mx = float(r[2]), float(r[0])
     load = task.load_kg
     if load > 0:
         for grip in posture.grips.values():
-            w = 0.5 * load * g
-            force = force + w
-            moment = moment + np.cross(grip - centre, w)
-    m_local = R.T @ moment
-    f_local = R.T @ force
+            mz += 0.5 * load * float(grip[2] - centre[2])
+            mx += 0.5 * load * float(grip[0] - centre[0])
+        total += load
+    m_local = R.T @ np.array([G * mz, 0.0, -G * mx])
+    f_local = R.T @ np.array([0.0, -G * total, 0.0])
     m_flex, m_twist, m_lat = float(m_local[0]), float(m_local[1]), float(m_local[2])
-    hip = float(np.mean(list(posture.hip_flexion.values())))
-    knee = float(np.mean(list(posture.knee_flexion.values())))
+    hip = 0.5 * (posture.hip_flexion["left"] + posture.hip_flexion["right"])
+    knee = 0.5 * (posture.knee_flexion["left"] + posture.knee_flexion["right"])
     k, a0, a1, expo = C.ABDOMINAL_COEFFICIENTS
     p_mmhg = max(0.0, k * (a0 - a1 * (max(hip, 0.0) + knee)) * max(m_flex, 0.0) ** expo)
     f_abd = p_mmhg * C.MMHG_PA * C.DIAPHRAGM_AREA_M2

@@ -152,7 +152,7 @@ def single_lift(lift: Lift, posture: Posture | None, where: str = "lift") -> dic
     coupling = lift.coupling
     if coupling == "auto":
         fingers = (posture is not None and
-                   float(np.mean([posture.arms[s].finger_flexion for s in posture.arms])) >= C.NIOSH_FINGERS_FLEXED_DEG)
+                   float(np.mean([posture.finger_flexion(s) for s in posture.arms])) >= C.NIOSH_FINGERS_FLEXED_DEG)
         coupling = coupling_type(lift, bool(fingers))
     o = _rwl(vals["h"], vals["v"], d, vals["a"], lift.frequency, lift.duration_h, coupling)
     out: dict[str, Any] = {"name": lift.name, "load_kg": lift.load_kg, "frequency": lift.frequency,
