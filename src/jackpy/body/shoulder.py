@@ -101,7 +101,24 @@ class ShoulderDriver:
         phi_c, theta_c, _, theta_s = allocate_batch(phi, th)
         return np.radians(np.stack([phi_c, theta_c, -phi_c, tau - th, phi, theta_s], axis=1))
 
-    def jacobian(self, theta: np.ndarray, h: float = 1e-7) -> np.ndarray:
+    def jacobian(self, theta: np.ndarray) -> np.ndarray:
+        """Analytic d(member displacements)/d(ϕ, θ, τ), (6, 3).
+
+        Degrees in and out cancel, so this is the derivative of the allocation in degrees. At the
+        breakpoints of β₁ (ϕ = 131.4°) and β₂ (ϕ = 130°) it is the left-hand derivative.
+        """
+        phi, th, _ = np.degrees(np.asarray(theta, dtype=float))
+        b1 = 0.2514 * phi + 91.076 if phi <= 131.4 else -0.035 * phi + 128.7
+        b2 = 0.21066 * phi + 92.348 if phi <= 130.0 else 120.0
+        db1 = 0.2514 if phi <= 131.4 else -0.035
+        db2 = 0.21066 if phi <= 130.0 else 0.0
+        c, s = np.cos(np.radians(th)), np.sin(np.radians(th))
+        dphi_c = (c * db1 + (1.0 - c) * db2, -np.pi / 180.0 * s * (b1 - b2), 0.0)
+        return np.array([dphi_c, (0.0, 0.2, 0.0), tuple(-v for v in dphi_c), (0.0, -1.0, 1.0),
+                         (1.0, 0.0, 0.0), (0.0, 0.8, 0.0)])
+
+    def numerical_jacobian(self, theta: np.ndarray, h: float = 1e-7) -> np.ndarray:
+        """Central-difference Jacobian (for tests)."""
         theta = np.asarray(theta, dtype=float)
         cols = []
         for k in range(3):

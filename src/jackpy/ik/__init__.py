@@ -22,9 +22,9 @@ from jackpy.ik.goals import (
                              unit_factor,
 )
 from jackpy.ik.problem import Problem
-from jackpy.ik.result import ACHIEVED, ITERATION_LIMIT, UNREACHABLE, GoalReport, Result
+from jackpy.ik.result import ACHIEVED, ITERATION_LIMIT, TIME_LIMIT, UNREACHABLE, GoalReport, Result
 from jackpy.ik.solver import solve
 
-__all__ = ["ACHIEVED", "ITERATION_LIMIT", "UNREACHABLE", "Aim", "AllOf", "AnyOf", "CentreOfMass", "Goal",
+__all__ = ["ACHIEVED", "ITERATION_LIMIT", "TIME_LIMIT", "UNREACHABLE", "Aim", "AllOf", "AnyOf", "CentreOfMass", "Goal",
            "GoalReport", "HalfSpace", "Line", "Orientation", "Plane", "Position", "PositionOrientation",
            "Problem", "Result", "solve", "unit_factor"]

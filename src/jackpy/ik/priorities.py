@@ -27,6 +27,8 @@ from jackpy.ik.problem import Evaluation
 
 #: restoration accepts a higher-level potential this far (absolute) above the held value
 RESTORE_TOL = 1e-12
+#: restoration evaluations one iteration of a lower level may spend over all its line-search trials
+RESTORE_EVALUATIONS = 12
 
 
 class Manifold:
@@ -52,13 +54,16 @@ class Manifold:
 
     def restore(self, ev: Evaluation, free: np.ndarray, step_limit: Callable[[np.ndarray, np.ndarray], float],
                 evaluate: Callable[[np.ndarray], Evaluation], rows: np.ndarray,
-                max_steps: int = 6) -> Evaluation | None:
+                max_steps: int = 6, expired: Callable[[], bool] | None = None) -> Evaluation | None:
         """Gauss-Newton back onto the held manifold from ``ev``; ``None`` if it cannot get there.
 
         ``step_limit(z, dz)`` is the largest feasible fraction of ``dz``; ``rows`` are active linear
-        limits the correction must not leave.
+        limits the correction must not leave; at most ``max_steps`` evaluations, none once
+        ``expired()`` (the solve's time box) is true.
         """
         for _ in range(max_steps):
+            if expired is not None and expired():
+                break
             Fh, Jh = ev.stacked(self.hi)
             if Fh @ Fh <= self.held + RESTORE_TOL:
                 return ev

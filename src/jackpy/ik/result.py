@@ -12,6 +12,8 @@ ACHIEVED = "achieved"
 UNREACHABLE = "unreachable"
 #: the iteration cap was hit first (warm-start again next frame)
 ITERATION_LIMIT = "iteration_limit"
+#: the time budget ran out: the posture is the best feasible iterate reached (warm-start again)
+TIME_LIMIT = "time_limit"
 
 
 @dataclass
@@ -40,8 +42,9 @@ class Result:
 
     @property
     def converged(self) -> bool:
-        """True at a solution or a constrained minimum; False when stopped by the iteration cap."""
-        return self.status != ITERATION_LIMIT
+        """True at a solution or a constrained minimum; False when stopped by the iteration cap or
+        the time budget."""
+        return self.status not in (ITERATION_LIMIT, TIME_LIMIT)
 
     @property
     def achieved(self) -> bool:

@@ -24,18 +24,22 @@ extension of the variable-metric method to linear inequalities:
 from __future__ import annotations
 
 import math
+import time
 
 import numpy as np
 
 from jackpy.errors import FigureError
-from jackpy.ik.priorities import Manifold
+from jackpy.ik.bounded_step import bounded_step
+from jackpy.ik.priorities import RESTORE_EVALUATIONS, Manifold
 from jackpy.ik.problem import Compiled, Evaluation, Problem
-from jackpy.ik.result import ACHIEVED, ITERATION_LIMIT, UNREACHABLE, GoalReport, Result
+from jackpy.ik.result import ACHIEVED, ITERATION_LIMIT, TIME_LIMIT, UNREACHABLE, GoalReport, Result
 
 C1 = 1e-4  # Armijo constant
 BOUND_TOL = 1e-12
 MU_SCALE = 10.0
 MU_FLOOR = 1e-3
+#: damping of the bounded Gauss-Newton step: ``lambda = GN_DAMPING_FLOOR + GN_DAMPING * |F|`` (scaled units)
+GN_DAMPING, GN_DAMPING_FLOOR = 0.03, 1e-3
 _EMPTY = np.zeros(0)
 
 try:  # numpy.linalg.inv's own kernel, without its per-call checks (the matrix is positive definite)
@@ -49,17 +53,25 @@ except (ImportError, AttributeError):  # pragma: no cover
 
 def solve(problem: Problem, *, max_iterations: int = 100, tol_position: float = 1e-4,
           tol_angle: float = 0.05, tol_step: float = 1e-10, analytic: bool = True,
-          apply: bool = True) -> Result:
+          apply: bool = True, time_budget_s: float | None = None, step: str = "bounded") -> Result:
     """Solve ``problem`` from the figure's current posture (a warm start).
 
     ``tol_position`` metres and ``tol_angle`` degrees decide when a goal is achieved; ``tol_step``
     (scaled radians) is the KKT step tolerance; ``max_iterations`` caps the work (an interactive
-    frame budget; the posture reached is still feasible and better). With ``analytic`` a problem
-    that is exactly one 6-D goal on a 7-DOF arm chain starts from the closed-form solution (see
-    :mod:`.arm7`). With ``apply`` the result is written into the figure.
+    frame budget; the posture reached is still feasible and better). ``time_budget_s`` is a promise:
+    no evaluation starts after it has passed, and the solve returns its best feasible iterate with
+    status ``"time_limit"``. With ``analytic`` a problem that is exactly one 6-D goal on a 7-DOF arm
+    chain starts from the closed-form solution (see :mod:`.arm7`). ``step``: ``"bounded"`` (default)
+    solves each level without higher levels to hold by bounded Gauss-Newton steps (many limits per
+    step, :mod:`.bounded_step`); ``"bfgs"`` uses the book's one-limit-at-a-time projected BFGS for
+    every level (the reference). With ``apply`` the result is written into the figure.
     """
+    if step not in ("bounded", "bfgs"):
+        raise ValueError(f"step must be 'bounded' or 'bfgs', not {step!r}")
     comp = problem.compile()
     run = _Run(comp, tol_position, tol_angle, tol_step)
+    if time_budget_s is not None:
+        run.deadline = run.started + max(0.0, float(time_budget_s))
     result = None
     if analytic and comp.arm is not None:
         z = comp.arm.seed(comp, run.x_base, run.z)
@@ -76,10 +88,13 @@ def solve(problem: Problem, *, max_iterations: int = 100, tol_position: float = 
             if i:
                 hi = comp.levels[:i]
                 manifold = Manifold(hi, float(sum(ev.potential(k) for k in hi)))
-            ev, status = run.minimise(ev, level, manifold, max_iterations - run.iterations)
-            if status == ITERATION_LIMIT:
+            if manifold is None and step == "bounded":
+                ev, status = run.minimise_bounded(ev, level, max_iterations - run.iterations)
+            else:
+                ev, status = run.minimise(ev, level, manifold, max_iterations - run.iterations)
+            if status in (ITERATION_LIMIT, TIME_LIMIT):
                 break
-        if status != ITERATION_LIMIT:
+        if status not in (ITERATION_LIMIT, TIME_LIMIT):
             status = ACHIEVED if run.achieved(ev, comp.levels[-1]) else UNREACHABLE
         result = run.result(ev, status, run.iterations, analytic=comp.arm is not None and analytic)
     if apply:
@@ -102,6 +117,8 @@ class _Run:
         self.iterations = 0
         self.memory = memory
         self.evaluations = 0
+        self.started = time.perf_counter()
+        self.deadline = math.inf
 
     # ----- helpers ----------------------------------------------------------------------------------
     def _feasible(self, z: np.ndarray) -> np.ndarray:
@@ -126,6 +143,10 @@ class _Run:
         if np.any(self.A @ y > self.b + 1e-9):
             raise FigureError("the joint groups' linear limits cannot be met within the joint limits")
         return y
+
+    def expired(self) -> bool:
+        """True once the time budget has passed (then no further evaluation is started)."""
+        return self.deadline != math.inf and time.perf_counter() >= self.deadline
 
     def evaluate(self, z: np.ndarray) -> Evaluation:
         self.evaluations += 1
@@ -185,6 +206,8 @@ class _Run:
                 break
             if self.achieved(ev, level):
                 return ev, ACHIEVED
+            if self.expired():
+                return ev, TIME_LIMIT
             free = ~fixed
             N = manifold.tangent_rows(ev, free) if manifold else no_rows
             C = np.vstack([self.A[rows] * free, N]) if rows else N
@@ -232,6 +255,8 @@ class _Run:
             new = self._line_search(ev, z, d, G, gd, min(1.0, alpha_max), level, manifold, free, rows, dmax)
             self.iterations += 1
             if new is None:
+                if self.expired():
+                    return ev, TIME_LIMIT
                 if not metric.pairs:
                     return ev, "stationary"
                 metric.clear()
@@ -253,6 +278,58 @@ class _Run:
                     ev_new.z = z_new
             small = small + 1 if G - G_new <= 1e-12 * G + 1e-18 else 0
             ev, z, J, G, g = ev_new, z_new, J_new, G_new, g_new
+            self.z = z
+            if small >= 3:
+                return ev, "stationary"
+        return ev, ITERATION_LIMIT
+
+    def minimise_bounded(self, ev: Evaluation, level: int, budget: int) -> tuple[Evaluation, str]:
+        """Minimise level ``level`` (no higher level to hold) by bounded Gauss-Newton steps.
+
+        Each iteration solves ``min |F + J d|^2 + lambda |d|^2`` over the box and the rows
+        (:func:`.bounded_step.bounded_step`, many limits bound or freed in one step), then an Armijo
+        backtracking search along ``d`` (the segment stays feasible: the feasible set is convex).
+        ``lambda = GN_DAMPING_FLOOR + GN_DAMPING |F|`` in scaled variables (stiffness still decides
+        among redundant solutions), raised tenfold after a failed search and relaxed after full steps.
+        """
+        z = ev.z
+        F, J = ev.levels[level]
+        G = float(F @ F)
+        end = self.iterations + budget
+        n = z.size
+        small, boost = 0, 1.0
+        rows = self.A.shape[0] > 0
+        held = None
+        while self.iterations < end:
+            if self.achieved(ev, level):
+                return ev, ACHIEVED
+            if self.expired():
+                return ev, TIME_LIMIT
+            lam = (GN_DAMPING_FLOOR + GN_DAMPING * math.sqrt(G)) * boost
+            c = J.T @ F
+            d, held, _ = bounded_step(J, lam, c, self.lo - z, self.hi - z, self.A if rows else None,
+                                      self.b - self.A @ z if rows else None, held=held)
+            dmax = float(np.max(np.abs(d), initial=0.0))
+            if dmax <= self.tol_step:
+                return ev, "stationary"
+            gd = 2.0 * float(c @ d)
+            if gd >= 0.0:
+                return ev, "stationary"
+            new = self._line_search(ev, z, d, G, gd, 1.0, level, None, None, [], dmax)
+            self.iterations += 1
+            if new is None:
+                if self.expired():
+                    return ev, TIME_LIMIT
+                if boost >= 1e6:
+                    return ev, "stationary"
+                boost *= 10.0
+                continue
+            ev_new, alpha = new
+            boost = max(1.0, boost / 10.0) if alpha >= 1.0 else boost * 2.0
+            F, J = ev_new.levels[level]
+            G_new = float(F @ F)
+            small = small + 1 if G - G_new <= 1e-12 * G + 1e-18 else 0
+            ev, z, G = ev_new, ev_new.z, G_new
             self.z = z
             if small >= 3:
                 return ev, "stationary"
@@ -293,11 +370,19 @@ class _Run:
         ``dmax`` is ``max |d|``.
         """
         active_rows = (self.A[rows] * free if rows else np.zeros((0, z.size))) if manifold is not None else None
+        restorations = RESTORE_EVALUATIONS  # restoration evaluations this iteration may spend
         for _ in range(30):
+            if self.expired():
+                return None
             trial: Evaluation | None = self.evaluate(z + alpha * d)
             if manifold is not None:
+                if restorations <= 0:
+                    return None
+                before = self.evaluations
                 trial = manifold.restore(trial, free, lambda zz, dz: self._ratio(zz, dz, free, None)[0],
-                                         self.evaluate, active_rows)
+                                         self.evaluate, active_rows, max_steps=min(6, restorations),
+                                         expired=self.expired)
+                restorations -= self.evaluations - before
             if trial is not None:
                 Ft = trial.levels[level][0]
                 Gt = float(Ft @ Ft)

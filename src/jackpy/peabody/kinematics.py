@@ -23,6 +23,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from jackpy.errors import FigureError
+from jackpy.peabody.kinematics_jit import forward_kernel
 from jackpy.peabody.transforms import batch_rotations, rigid_inverse
 
 if TYPE_CHECKING:
@@ -227,6 +228,15 @@ class Kinematics:
         ad[:, 3, 1] = 1.0
         self._axis_origin = ad
         self._slots_eye = np.broadcast_to(np.eye(4), (MAX_JOINT_DOFS * nseg, 4, 4)).copy()
+        # the compiled loop's tables (kinematics_jit): per segment its DOFs in traversal order
+        slot_dof = np.lexsort((t_slot, seg_of_dof)) if ndof else np.zeros(0, dtype=int)
+        counts = np.bincount(seg_of_dof, minlength=nseg) if ndof else np.zeros(nseg, dtype=int)
+        starts = np.concatenate([[0], np.cumsum(counts)[:-1]])
+        self._jit_tables = (self.parent.astype(np.int64), np.ascontiguousarray(P), np.ascontiguousarray(Q),
+                            starts.astype(np.int64), counts.astype(np.int64), slot_dof.astype(np.int64),
+                            np.isin(slot_dof, self.rot_dofs), np.ascontiguousarray(signed[slot_dof]),
+                            self.dof_sign[slot_dof] < 0, np.ascontiguousarray(self.dof_axis))
+        self.use_jit = forward_kernel is not None
 
     # ----- forward -----------------------------------------------------------------------------
     def dof_matrices(self, q: np.ndarray) -> np.ndarray:
@@ -256,6 +266,18 @@ class Kinematics:
             W = np.empty((nseg, 4, 4))
             W[0] = location @ self.root_site_inv
             return FKResult(W, np.zeros((0, 3)), np.zeros((0, 3)))
+        if self.use_jit:
+            W = np.empty((nseg, 4, 4))
+            axes, origins = np.empty((self.ndof, 3)), np.empty((self.ndof, 3))
+            forward_kernel(q, np.asarray(location, dtype=float), self.root_site_inv, *self._jit_tables,
+                           W, axes, origins)
+            return FKResult(W, axes, origins)
+        return self.forward_numpy(q, location)
+
+    def forward_numpy(self, q: np.ndarray, location: np.ndarray) -> FKResult:
+        """:meth:`forward` by batched numpy operations (the reference of the compiled loop)."""
+        q = np.asarray(q, dtype=float)
+        nseg = len(self.segment_names)
         S = self._slots_eye.copy()
         if self._rot_pos.size:
             a = q[self.rot_dofs]

@@ -1,0 +1,164 @@
+"""The bounded Gauss-Newton subproblem: a convex QP over the box and the linear rows.
+
+``min_d  c.d + d.H d / 2   subject to   l <= d <= u,  A d <= r``, with ``H = J^T J + lambda I``
+(``J`` m x n, ``lambda > 0``), ``l <= 0 <= u`` and ``r >= 0`` (the current point is feasible).
+Solves with ``H`` restricted to the free variables go through Woodbury's identity, an m x m
+Cholesky factor (m residuals, usually far fewer than n variables).
+
+Solved by projected Newton iterations (Bertsekas 1982, "Projected Newton methods for optimization
+problems with simple constraints", SIAM J. Control Optim. 20(2):221-246; Nocedal & Wright 2006,
+§16.7 gradient projection): each iteration splits the variables into those held at a bound (at the
+bound with the gradient pushing outward) and the free ones, takes the Newton step of the free ones
+(with the working rows held as equalities, Rosen's projection), and searches along its projection
+onto the box. One projection can bind *and* free many bounds at once, and all of this happens on
+the quadratic model: no forward kinematics is spent on finding the active set. Rows are few (joint
+groups' cuts) and are handled as an active set: a step is cut at the first inactive row it meets,
+that row joins the working set, and a row whose multiplier turns negative leaves it.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+try:  # numpy.linalg.inv's own kernel, without its per-call checks (the matrix is positive definite)
+    from numpy.linalg import _umath_linalg
+
+    def _inv(M: np.ndarray) -> np.ndarray:
+        return _umath_linalg.inv(M, signature="d->d")
+except (ImportError, AttributeError):  # pragma: no cover
+    _inv = np.linalg.inv
+
+#: a variable this close to a bound (scaled units) counts as at the bound
+AT_BOUND = 1e-12
+#: Armijo constant of the projected search on the model
+SIGMA = 1e-4
+#: a row may exceed its bound by this much (rounding), as the solver's feasibility test allows
+ROW_TOL = 1e-13
+
+
+class _Hessian:
+    """``H = J^T J + lambda I``: products, and solves on a subset of the variables (Woodbury)."""
+
+    def __init__(self, J: np.ndarray, lam: float) -> None:
+        self.J, self.lam = J, lam
+
+    def dot(self, d: np.ndarray) -> np.ndarray:
+        return self.J.T @ (self.J @ d) + self.lam * d
+
+    def factor(self, free: np.ndarray) -> None:
+        """Prepare solves with ``H[free][:, free]``: ``(lambda I + J_f J_f^T)^-1``, m x m."""
+        Jf = self.J[:, free]
+        K = Jf @ Jf.T
+        K.flat[::K.shape[0] + 1] += self.lam
+        self.Jf, self.Kinv = Jf, _inv(K)
+
+    def solve(self, V: np.ndarray) -> np.ndarray:
+        """``H_ff^-1 V`` for a vector or a column block on the free variables."""
+        Jf = self.Jf
+        return (V - Jf.T @ (self.Kinv @ (Jf @ V))) / self.lam
+
+
+def _model(H: _Hessian, c: np.ndarray, d: np.ndarray) -> float:
+    return float(c @ d + 0.5 * d @ H.dot(d))
+
+
+def bounded_step(J: np.ndarray, lam: float, c: np.ndarray, lower: np.ndarray, upper: np.ndarray,
+                 A: np.ndarray | None = None, r: np.ndarray | None = None, *,
+                 held: np.ndarray | None = None, max_iterations: int = 100,
+                 tol: float = 1e-12) -> tuple[np.ndarray, np.ndarray, int]:
+    """(the minimiser ``d``, the bounds held at it, inner iterations) of the QP above.
+
+    Every iterate is feasible. ``held``: a guess of the variables held at a bound (the previous
+    step's; those not at a bound are ignored), a warm start of the search. ``tol`` is relative to
+    ``max |c|``: multipliers above ``-tol max|c|`` count as non-negative.
+    """
+    n = c.size
+    d = np.zeros(n)
+    if n == 0:
+        return d, np.zeros(0, dtype=bool), 0
+    H = _Hessian(J, lam)
+    rows_on = A is not None and A.shape[0] > 0
+    fixed = upper - lower <= AT_BOUND
+    at_lo, at_hi = lower >= -AT_BOUND, upper <= AT_BOUND
+    held = fixed | (at_lo & (c > 0)) | (at_hi & (c < 0)) | (
+        (at_lo | at_hi) & held if held is not None else False)
+    working: list[int] = []
+    eps = tol * max(float(np.max(np.abs(c))), 1e-300)
+    it = 0
+    on_face = False  # d is the exact minimiser on the current face (a full, unclipped Newton step)
+    for it in range(1, max_iterations + 1):
+        grad = H.dot(d) + c
+        free = np.flatnonzero(~held)
+        s = np.zeros(n)
+        nu = np.zeros(len(working))
+        if free.size and not on_face:
+            H.factor(free)
+            sf = -H.solve(grad[free])
+            if working:
+                Aw = A[working][:, free]
+                HA = H.solve(Aw.T)
+                nu = np.linalg.lstsq(Aw @ HA, Aw @ sf, rcond=1e-12)[0]
+                sf = sf - HA @ nu
+                sf = sf - Aw.T @ np.linalg.lstsq(Aw @ Aw.T, Aw @ sf, rcond=1e-12)[0]  # exactly on the rows
+            s[free] = sf
+        decrease = -float(grad @ s)  # twice the model decrease of the full step, up to rows' share
+        if on_face or decrease <= 1e-15 * (1.0 + abs(_model(H, c, d))) or float(np.max(np.abs(s))) <= 1e-15:
+            on_face = False
+            # a minimiser on the current face: release every bound and the worst row with a wrong multiplier
+            eff = grad + (A[working].T @ nu if working else 0.0)
+            at_lo = d <= lower + AT_BOUND
+            wrong = held & ~fixed & np.where(at_lo, eff < -eps, eff > eps)
+            if wrong.any():
+                held &= ~wrong
+                continue
+            if working and float(np.min(nu)) < -eps:
+                working.pop(int(np.argmin(nu)))
+                continue
+            break
+        if not working:  # gradient projection: bind (and keep free) many bounds in one step
+            q0 = _model(H, c, d)
+            alpha = 1.0
+            for _ in range(20):
+                trial = np.minimum(np.maximum(d + alpha * s, lower), upper)
+                if (not rows_on or np.all(A @ trial <= r + ROW_TOL)) and \
+                        _model(H, c, trial) <= q0 + SIGMA * float(grad @ (trial - d)):
+                    hit = ((trial <= lower + AT_BOUND) & (s < 0)) | ((trial >= upper - AT_BOUND) & (s > 0))
+                    on_face = alpha == 1.0 and not hit.any()
+                    d = trial
+                    held |= hit
+                    break
+                alpha *= 0.5
+            else:
+                alpha = 0.0
+            if alpha > 0.0:
+                continue
+        # one constraint at a time: the largest feasible step along s, the blocking bound or row joins
+        with np.errstate(divide="ignore", invalid="ignore"):
+            ratio = np.where(s > 0, (upper - d) / s, np.where(s < 0, (lower - d) / s, np.inf))
+        var = int(np.argmin(ratio))
+        a, row = min(1.0, max(float(ratio[var]), 0.0)), -1
+        if rows_on:
+            inactive = np.ones(A.shape[0], dtype=bool)
+            inactive[working] = False
+            idx = np.flatnonzero(inactive)
+            if idx.size:
+                As = A[idx] @ s
+                pos = As > 1e-15
+                if pos.any():
+                    rr = np.full(idx.size, np.inf)
+                    rr[pos] = np.maximum(r[idx][pos] - A[idx][pos] @ d, 0.0) / As[pos]
+                    k = int(np.argmin(rr))
+                    if rr[k] < a:
+                        a, row = float(rr[k]), int(idx[k])
+        d = np.minimum(np.maximum(d + a * s, lower), upper)
+        if row >= 0:
+            working.append(row)
+        elif a < 1.0:
+            held[var] = True
+            d[var] = upper[var] if s[var] > 0 else lower[var]
+    if rows_on:  # rounding along the working rows: shrink toward the feasible start d = 0
+        Ad = A @ d
+        over = Ad > r + ROW_TOL
+        if over.any():
+            d = d * float(np.min(np.where(over, r / np.where(over, Ad, 1.0), 1.0)))
+    return d, held, it
