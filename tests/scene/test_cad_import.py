@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import importlib.util
+import re
 
 import numpy as np
 import pytest
@@ -13,8 +14,7 @@ from jackpy.peabody import Environment
 from jackpy.scene import add_cad, decimate, import_cad
 from jackpy.scene.cad import UNITS
 
-NEEDS = {"3mf": "lxml", "dae": "collada"}
-FORMATS = ["obj", "stl", "ply", "off", "gltf", "glb", "3mf", "dae"]
+NEEDS = {"3mf": "lxml", "dae": "collada", "step": "cascadio"}
 
 
 def _available(fmt: str) -> bool:
@@ -37,15 +37,70 @@ def _box_file(tmp_path, fmt: str, extents=(10.0, 20.0, 30.0)):
     return path
 
 
-@pytest.mark.parametrize("fmt", FORMATS)
+UNITLESS = ["obj", "stl", "ply", "off"]
+#: 3MF unit names and COLLADA <unit meter> of each jackpy unit
+_3MF = {"mm": "millimeter", "cm": "centimeter", "m": "meter", "in": "inch"}
+PART = np.array([100.0, 50.0, 20.0])  # the known part: 100 x 50 x 20 file units
+
+
+def _declared_file(tmp_path, fmt: str, unit: str):
+    """The known part in a format that declares its unit, declared in ``unit`` (glTF: metres, the
+    only unit it has, so the part is written at its size in ``unit`` converted to metres)."""
+    if not _available(fmt):
+        pytest.skip(f"{fmt} needs optional package {NEEDS.get(fmt, fmt)}")
+    s = UNITS[unit]
+    if fmt == "step":
+        from step_box import step_box
+
+        path = tmp_path / "part.step"
+        path.write_text(step_box(tuple(PART), unit))
+        return path
+    box = trimesh.creation.box(extents=PART * (s if fmt in ("gltf", "glb") else 1.0))
+    box.apply_translation(box.extents / 2)
+    path = tmp_path / f"part.{fmt}"
+    if fmt == "gltf":
+        for name, data in box.export(file_type="gltf").items():
+            (tmp_path / name).write_bytes(data)
+        (tmp_path / "model.gltf").rename(path)
+    elif fmt == "3mf":
+        import zipfile
+
+        box.export(str(tmp_path / "plain.3mf"))
+        with zipfile.ZipFile(tmp_path / "plain.3mf") as src, zipfile.ZipFile(path, "w") as dst:
+            for item in src.infolist():
+                data = src.read(item.filename)
+                if item.filename.lower().endswith("3dmodel.model"):
+                    data = re.sub(rb'unit="\w+"', f'unit="{_3MF[unit]}"'.encode(), data, count=1)
+                    assert f'unit="{_3MF[unit]}"'.encode() in data
+                dst.writestr(item, data)
+    elif fmt == "dae":
+        text = box.export(file_type="dae").decode()
+        path.write_text(text.replace("<asset>", f'<asset>\n    <unit meter="{s}" name="{unit}"/>', 1))
+    else:
+        box.export(str(path))
+    return path
+
+
+@pytest.mark.parametrize("fmt", UNITLESS)
 @pytest.mark.parametrize("units", ["mm", "cm", "m", "in"])
-def test_each_format_imports_with_units(tmp_path, fmt, units):
-    obj = import_cad(_box_file(tmp_path, fmt), units=units, up="y")
+def test_unitless_formats_take_the_given_units_at_true_size(tmp_path, fmt, units):
+    obj = import_cad(_box_file(tmp_path, fmt, extents=tuple(PART)), units=units, up="y")
     lo, hi = obj.mesh().bounds()
-    s = UNITS[units]
-    np.testing.assert_allclose(hi - lo, np.array([10.0, 20.0, 30.0]) * s, rtol=1e-6)
+    np.testing.assert_allclose(hi - lo, PART * UNITS[units], rtol=1e-3)  # +-0.1 %
     assert obj.settings.units == units and obj.settings.source.endswith(f"box.{fmt}")
     assert len(obj.mesh().faces) == 12
+
+
+@pytest.mark.parametrize("fmt", ["gltf", "glb", "3mf", "dae", "step"])
+@pytest.mark.parametrize("declared", ["mm", "cm", "m", "in"])
+def test_formats_that_declare_units_come_in_at_true_size(tmp_path, fmt, declared):
+    """The file's own unit wins: a 100 x 50 x 20 mm STEP part is 0.1 x 0.05 x 0.02 m whatever
+    ``units`` says (the STEP reader already converts to metres; it must not be scaled again)."""
+    path = _declared_file(tmp_path, fmt, declared)
+    for units in ("mm", "m"):
+        obj = import_cad(path, units=units, up="y")
+        lo, hi = obj.mesh().bounds()
+        np.testing.assert_allclose(hi - lo, PART * UNITS[declared], rtol=1e-3)  # +-0.1 %
 
 
 @pytest.mark.parametrize("up,expected", [("y", (10, 20, 30)), ("z", (10, 30, 20)), ("x", (20, 10, 30))])
