@@ -46,6 +46,8 @@ def parse_share(text: str) -> float:
 def run(args: argparse.Namespace) -> int:
     from jackpy.errors import JackpyError
     from jackpy.population.run import population_bodies, sweep
+    from jackpy.population.study import check_against_scene, load_study
+    from jackpy.scene.workplace import load_workplace
 
     if not 0.0 <= args.sex_mix <= 1.0:
         raise JackpyError(f"--sex-mix must be between 0 and 1, not {args.sex_mix}")
@@ -53,6 +55,8 @@ def run(args: argparse.Namespace) -> int:
         raise JackpyError(f"--n must be at least 1, not {args.n}")
     if args.workers is not None and args.workers < 0:
         raise JackpyError(f"--workers must be 0 or more, not {args.workers}")
+    wp, study = load_workplace(args.scene), load_study(args.study)
+    check_against_scene(study, wp.env)  # bad names fail before any work
     bodies = None
     description: dict = {}
     if not args.resume:
@@ -62,15 +66,14 @@ def run(args: argparse.Namespace) -> int:
         description = {"population": {"n": len(bodies), "family": share, "family_dims": dims if share else None,
                                       "sex_mix": args.sex_mix, "seed": args.seed}}
     try:
-        result, table = sweep(args.scene, args.study, bodies, args.output, workers=args.workers,
+        result, table = sweep(wp, study, bodies, args.output, workers=args.workers,
                               scheduler=args.scheduler, resume=args.resume, progress=not args.no_progress,
                               description=description)
     except KeyboardInterrupt:
         from jackpy.population.evaluate import columns
         from jackpy.population.journal import Journal
-        from jackpy.population.study import load_study
 
-        kept = len(Journal(args.output).finished(columns(load_study(args.study))))
+        kept = len(Journal(args.output).finished(columns(study)))
         print(f"\njackpy: interrupted: {kept} finished rows kept in {args.output}; finish with --resume",
               file=sys.stderr)
         return 130
