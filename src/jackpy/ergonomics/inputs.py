@@ -29,6 +29,12 @@ def load_task(path: str | None, load_kg: float | None = None) -> Task:
     if load_kg is not None:
         task.load_kg = load_kg
         task.validate()
+    from jackpy.ergonomics.niosh import validate_lifts
+
+    try:
+        validate_lifts(task)
+    except ErgonomicsError as exc:
+        raise ErgonomicsError(f"{path}: {exc}" if path else str(exc)) from None
     return task
 
 
@@ -53,6 +59,7 @@ def figure_from_scene(path: str, name: str | None, human: str = "male:50") -> Fi
         fig = make_human(*sizes[0], name=name)
         stand_figure(fig, wp.stand)
         return fig
+    import jackpy.body  # noqa: F401  (registers the standard human's joint-group kinds for reading)
     from jackpy.document.session import load_session
 
     env, _ = load_session(p)

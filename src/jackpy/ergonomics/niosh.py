@@ -104,6 +104,17 @@ def _check(lift: Lift, where: str) -> None:
         raise ErgonomicsError(f"{where}: give the vertical travel d (cm) or the destination height dest_v")
 
 
+def validate_lifts(task: Task) -> None:
+    """Check every lift's parameters (ErgonomicsError naming the lift and the parameter) without a
+    posture: for commands to fail before any work."""
+    for i, x in enumerate(task.lifts):
+        where = f"lift {x.name or i + 1}"
+        _check(x, where)
+        fm(x.frequency, x.duration_h, C.NIOSH_V_REF_CM)
+        if x.load_kg == 0 and task.load_kg == 0:
+            raise ErgonomicsError(f"{where}: no load (give load_kg for the lift or the task)")
+
+
 def measured_origin(p: Posture) -> dict[str, float]:
     """H, V (cm) and A (degrees) of the hands in ``p`` (see the module docstring)."""
     off = p.hands_mid - p.ankles_mid

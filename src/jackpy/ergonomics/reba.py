@@ -82,6 +82,10 @@ def _arm(p: Posture, side: str, task: Task) -> dict[str, Any]:
             "adjustments": adj}
 
 
+def _parts_sum(arm: dict[str, Any]) -> int:
+    return sum(v for k, v in arm.items() if k in ("upper_arm", "lower_arm", "wrist", "wrist_twist"))
+
+
 def assess(figure: Figure, task: Task, posture: Posture, fk: FKResult | None = None) -> Assessment:
     """REBA of ``posture`` under ``task``; see the module docstring."""
     p = posture
@@ -104,7 +108,7 @@ def assess(figure: Figure, task: Task, posture: Posture, fk: FKResult | None = N
     score_a = table_a + load
     sides = ("left", "right") if task.side == "worst" else (task.side,)
     arms = {s: _arm(p, s, task) for s in sides}
-    side = max(sides, key=lambda s: arms[s]["table_b"])
+    side = max(sides, key=lambda s: (arms[s]["table_b"], _parts_sum(arms[s])))  # ties: the more loaded arm
     arm = arms[side]
     coupling = C.REBA_COUPLING[task.coupling]
     score_b = arm["table_b"] + coupling

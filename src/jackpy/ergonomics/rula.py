@@ -95,6 +95,10 @@ def _arm(p: Posture, side: str, task: Task) -> dict[str, Any]:
             "adjustments": adj}
 
 
+def _parts_sum(arm: dict[str, Any]) -> int:
+    return sum(v for k, v in arm.items() if k in ("upper_arm", "lower_arm", "wrist", "wrist_twist"))
+
+
 def assess(figure: Figure, task: Task, posture: Posture, fk: FKResult | None = None) -> Assessment:
     """RULA of ``posture`` under ``task``; see the module docstring."""
     p = posture
@@ -103,7 +107,7 @@ def assess(figure: Figure, task: Task, posture: Posture, fk: FKResult | None = N
     force = load_score(task)
     sides = ("left", "right") if task.side == "worst" else (task.side,)
     arms = {s: _arm(p, s, task) for s in sides}
-    side = max(sides, key=lambda s: arms[s]["table_a"])
+    side = max(sides, key=lambda s: (arms[s]["table_a"], _parts_sum(arms[s])))  # ties: the more loaded arm
     arm = arms[side]
     adj: dict[str, Any] = {}
     neck = neck_score(p.neck_flexion)
