@@ -8,7 +8,18 @@ import argparse
 import sys
 import time
 
-from jackpy.errors import JackpyError
+from jackpy.errors import ParseError
+
+
+def positive(text: str) -> float:
+    """An argparse type: a number > 0."""
+    try:
+        v = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a number, not {text!r}") from None
+    if not v > 0 or v != v or v == float("inf"):
+        raise argparse.ArgumentTypeError(f"must be > 0, not {text}")
+    return v
 
 
 class Progress:
@@ -44,7 +55,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     b.add_argument("scene", metavar="SCENE", help="workplace scene (JSON), or - for an empty floor")
     b.add_argument("motion", metavar="MOTION", help="motion file (NAME.motion.json)")
     b.add_argument("-o", "--output", required=True, metavar="OUT.motion.json", help="motion file with baked frames")
-    b.add_argument("--fps", type=float, default=30.0, help="frames per second (default 30)")
+    b.add_argument("--fps", type=positive, default=30.0, help="frames per second (default 30)")
     b.set_defaults(func=run_bake)
 
     i = msub.add_parser("import-bvh", help="retarget a BVH motion capture onto a standard human")
@@ -52,7 +63,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     i.add_argument("--figure", default="male:50", metavar="male:50|female:5",
                    help="the human to drive (default male:50)")
     i.add_argument("--map", default=None, metavar="MAP.json", help="joint-name map file (see docs/motion.md)")
-    i.add_argument("--fps", type=float, default=None, help="resample to this rate (default: the file's)")
+    i.add_argument("--fps", type=positive, default=None, help="resample to this rate (default: the file's)")
     i.add_argument("-o", "--output", required=True, metavar="OUT.motion.json")
     i.set_defaults(func=run_import)
 
@@ -60,7 +71,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     e.add_argument("motion", metavar="MOTION", help="motion file (baked, or baked now at --fps)")
     e.add_argument("--scene", default=None, metavar="SCENE", help="scene to bake in when the file is not baked")
     e.add_argument("--figure", default=None, metavar="NAME", help="figure to export (default: the first)")
-    e.add_argument("--fps", type=float, default=30.0, help="bake rate when the file is not baked (default 30)")
+    e.add_argument("--fps", type=positive, default=30.0, help="bake rate when the file is not baked (default 30)")
     e.add_argument("-o", "--output", required=True, metavar="OUT.bvh|OUT.glb|OUT.csv")
     e.set_defaults(func=run_export)
 
@@ -73,7 +84,7 @@ def bake_motion_file(mf, scene: str | None, fps: float, progress=None):
 
     env, loops = cast.build(mf.timeline, None if scene in (None, "-") else scene)
     if not loops:
-        raise JackpyError("the motion drives no figure (no motions, key tracks or figures)")
+        raise ParseError("the motion drives no figure (no motions, key tracks or figures)", "timeline")
     baker = Baker(mf.timeline, loops, env, fps)
     frames = baker.bake(progress)
     baked = {}
@@ -86,8 +97,6 @@ def bake_motion_file(mf, scene: str | None, fps: float, progress=None):
 def run_bake(args: argparse.Namespace) -> int:
     from jackpy.motion import motion_file
 
-    if not args.fps > 0:
-        raise JackpyError(f"--fps must be > 0, not {args.fps}")
     mf = motion_file.load(args.motion)
     out, _, _ = bake_motion_file(mf, args.scene, args.fps, Progress("baking"))
     motion_file.save(out, args.output)
@@ -116,7 +125,7 @@ def run_export(args: argparse.Namespace) -> int:
         mf, _, _ = bake_motion_file(mf, args.scene, args.fps, Progress("baking"))
     name = args.figure or next(iter(mf.baked))
     if name not in mf.baked:
-        raise JackpyError(f"{args.motion}: no baked figure {name!r} (figures: {', '.join(mf.baked)})")
+        raise ParseError(f"no baked figure {name!r} (figures: {', '.join(mf.baked)})", args.motion)
     baked = mf.baked[name]
     fig = cast.make_figure(name, {"human": baked.human or cast.DEFAULT_HUMAN})
     suffix = Path(args.output).suffix.lower()
@@ -133,6 +142,6 @@ def run_export(args: argparse.Namespace) -> int:
 
         write_csv(fig, baked, mf.fps, args.output)
     else:
-        raise JackpyError(f"{args.output}: export as .bvh, .glb or .csv, not {suffix or 'no extension'!r}")
+        raise ParseError(f"export as .bvh, .glb or .csv, not {suffix or 'no extension'!r}", args.output)
     print(f"{args.output}: {baked.n_frames} frames of {name}")
     return 0

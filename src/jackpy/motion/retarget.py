@@ -112,7 +112,7 @@ def load_map(path: str | os.PathLike) -> NameMap:
 
 
 def choose_map(bvh: BVH) -> NameMap:
-    """The built-in map whose joint names the file has (JackpyError naming what is missing)."""
+    """The built-in map whose joint names the file has (ParseError naming what is missing)."""
     names = set(bvh.names)
     best = None
     for key, m in BUILTIN_MAPS.items():
@@ -121,8 +121,8 @@ def choose_map(bvh: BVH) -> NameMap:
             return NameMap(dict(m["joints"]), m["skip_frames"], key)
         if best is None or len(missing) < len(best[1]):
             best = (key, missing)
-    raise JackpyError(f"{bvh.file}: joint names match no known convention (closest: {best[0]}, missing "
-                      f"{', '.join(best[1][:5])}); give a map file with --map")
+    raise ParseError(f"joint names match no known convention (closest: {best[0]}, missing "
+                     f"{', '.join(best[1][:5])}); give a map file with --map", bvh.file)
 
 
 def _unit(v: np.ndarray) -> np.ndarray:
@@ -202,7 +202,7 @@ def targets_for(figure, bvh: BVH, nmap: NameMap, fps: float) -> tuple[Targets, f
     cap = np.mean([bone(f"{s}_hip", f"{s}_knee") + bone(f"{s}_knee", f"{s}_ankle") for s in SIDES])
     own = np.mean([jbone(f"{s}_hip", f"{s}_knee") + jbone(f"{s}_knee", f"{s}_ankle") for s in SIDES])
     if cap <= 0:
-        raise JackpyError(f"{bvh.file}: the legs have zero length")
+        raise ParseError("the legs have zero length", bvh.file)
     s = own / cap
     balls = np.minimum(P("left_ball")[:, 1], P("right_ball")[:, 1])
     floor = float(np.percentile(balls, 5))
@@ -348,7 +348,10 @@ def import_bvh(path: str | os.PathLike, figure_spec: str = "male:50", map_file: 
     from jackpy.motion.motion_file import BakedFigure, MotionFile
     from jackpy.motion.timeline import Timeline
 
-    bvh = read(str(path))
+    try:
+        bvh = read(str(path))
+    except FileNotFoundError:
+        raise ParseError("no such BVH file", str(path)) from None
     name = name or Path(path).stem.split(".")[0]
     fig = cast.make_figure(name, {"human": figure_spec})
     if fps is None:
@@ -361,10 +364,10 @@ def import_bvh(path: str | os.PathLike, figure_spec: str = "male:50", map_file: 
         nmap = load_map(map_file) if map_file else choose_map(bvh)
         missing = [k for k in LANDMARKS if k not in nmap.joints]
         if missing:
-            raise JackpyError(f"{nmap.name}: the map lacks landmarks {', '.join(missing)}")
+            raise ParseError(f"the map lacks landmarks {', '.join(missing)}", nmap.name)
         unknown = [v for v in nmap.joints.values() if v not in bvh.names]
         if unknown:
-            raise JackpyError(f"{bvh.file}: no joint named {unknown[0]!r} (from the map {nmap.name})")
+            raise ParseError(f"no joint named {unknown[0]!r} (from the map {nmap.name})", bvh.file)
         tg, _, _ = targets_for(fig, bvh, nmap, fps)
         rt = Retargeter(fig)
         n = tg.hips.shape[0]
