@@ -15,7 +15,7 @@ def offscreen_renderer_or_skip(width: int, height: int):
     """
     if os.environ.get("JACKPY_WINDOW_CHILD"):
         pytest.skip("offscreen tests do not run in the window child")
-    from jackpy.ui.render import offscreen_renderer
+    from jackpy.render import offscreen_renderer
 
     try:
         return offscreen_renderer(width, height)

@@ -19,7 +19,7 @@ from jackpy.ui.analysis_overlays import (
     workspace_items,
     workspace_mesh,
 )
-from jackpy.ui.render import DrawItem, Scene, box
+from jackpy.render import DrawItem, Scene, box
 
 W, H = 320, 240
 EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "workplace" / "workplace.json"
@@ -200,6 +200,6 @@ def test_screenshot_with_envelope_and_cones(renderer, tmp_path):
     app.step()
     without = renderer.read_pixels()
     assert np.any(np.abs(with_overlays[..., :3].astype(int) - without[..., :3]) > 10, axis=2).sum() > 0.05 * W * H
-    from jackpy.ui.render import write_png
+    from jackpy.render import write_png
 
     write_png(tmp_path / "envelope_and_cones.png", with_overlays)

@@ -11,7 +11,7 @@ W, H = 800, 600
 
 @pytest.fixture(scope="module")
 def renderer():
-    from jackpy.ui.render import offscreen_renderer
+    from jackpy.render import offscreen_renderer
 
     try:
         r = offscreen_renderer(W, H, samples=0)

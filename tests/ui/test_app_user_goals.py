@@ -33,12 +33,16 @@ def test_half_space_goal_on_the_elbow_is_solved_with_the_behaviors_and_undone():
     e0 = fig.site_world("right_upper_arm", "elbow")[:3, 3].copy()
     app.command("add", lambda: app.add_goal(fig, "right_upper_arm.elbow", "half-space"))
     g = app.goal(f"{fig.name}:right_upper_arm.elbow")
-    g.axis = np.array([1.0, 0.0, 0.0])  # keep the elbow from swinging out (-x)
+    t = g.target
+    t[:3, :3] = [[0.0, 1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 0.0, 1.0]]  # normal (the frame's y) +x
+    g.target = t  # keep the elbow from swinging out (-x)
+    assert np.allclose(g.goal.normal, [1.0, 0.0, 0.0])
     hand = app.ensure_goal(fig, "right_palm.palm_centre")
     before = hand.target.copy()
     for k in range(30):
-        hand.target = before.copy()
-        hand.target[:3, 3] += (k + 1) / 30 * np.array([0.15, 0.2, 0.35])
+        t = before.copy()
+        t[:3, 3] += (k + 1) / 30 * np.array([0.15, 0.2, 0.35])
+        hand.target = t
         app.drive_behaviors(hand, before)
         app.goals_changed()
         app.step()
@@ -61,7 +65,9 @@ def test_head_aim_goal_holds_with_behaviors():
     fig = app.figure_of_interest()
     app.command("add", lambda: app.add_goal(fig, "head.view", "aim"))
     g = app.goal(f"{fig.name}:head.view")
-    g.target[:3, 3] += [0.4, 0.2, 0.0]
+    t = g.target
+    t[:3, 3] += [0.4, 0.2, 0.0]
+    g.target = t
     app.goals_changed()
     settle(app)
     w = fig.site_world("head", "view")
@@ -104,7 +110,9 @@ def test_pressing_an_eye_grabs_the_gaze_target(renderer):
     assert np.abs(fig.joint("right_eye").displacement - eye0).max() > np.radians(1.0)
     assert np.abs(fig.joint("atlanto_occipital").displacement - neck0).max() < np.radians(0.5)
     g = app.goal(f"{fig.name}:eyes")
-    g.target[:3, 3] += [1.5, 0.0, 0.0]  # far out of the eyes' range: the head follows
+    t = g.target
+    t[:3, 3] += [1.5, 0.0, 0.0]  # far out of the eyes' range: the head follows
+    g.target = t
     app.drive_behaviors(g, g.target)
     app.goals_changed()
     settle(app)

@@ -6,6 +6,7 @@ import pytest
 import trimesh
 
 from jackpy.behaviors import describe
+from jackpy.scene.cad import CADObject
 from jackpy.ui import session
 from jackpy.ui.app import App
 from jackpy.ui.panels.behaviors import from_display, set_enabled, set_param, to_display
@@ -87,7 +88,7 @@ def test_import_cad_units_up_errors_and_undo(tmp_path):
     lo, hi = obj.display_mesh().vertices.min(axis=0), obj.display_mesh().vertices.max(axis=0)
     assert np.allclose(np.sort(hi - lo), [0.2, 0.5, 1.0], atol=1e-6)
     assert (hi - lo)[1] == pytest.approx(0.2)  # file z (0.2 m) is up
-    assert "box" in app.view.cad_figures and app.undo_stack.undo_label.startswith("import")
+    assert isinstance(app.env.figures["box"], CADObject) and app.undo_stack.undo_label.startswith("import")
     (tmp_path / "bad.stl").write_text("not an stl")
     for path, units in ((tmp_path / "bad.stl", "mm"), (tmp_path / "missing.obj", "m"), (tmp_path / "box.stl", "ft")):
         assert not app.import_cad(path, units, "y")

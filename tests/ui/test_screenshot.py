@@ -9,7 +9,7 @@ from jackpy.cli import main
 
 @pytest.fixture(autouse=True)
 def _needs_egl():
-    from jackpy.ui.render import create_egl_context
+    from jackpy.render import create_egl_context
 
     try:
         create_egl_context().release()

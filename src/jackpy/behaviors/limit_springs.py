@@ -20,7 +20,6 @@ import numpy as np
 
 from jackpy.behaviors.base import BehaviorBase, param
 from jackpy.errors import FigureError
-from jackpy.behaviors.loop import register_reusable
 from jackpy.ik.goals import Context, Goal, GoalEval
 
 if TYPE_CHECKING:
@@ -30,7 +29,14 @@ if TYPE_CHECKING:
 
 class LimitSpring(Goal):
     """Keep the rotational DOF of one-DOF ``joint`` at least ``margin`` (rad) of flexion away from
-    ``extension`` (rad); ``sign`` (+1/-1) is the direction of flexion."""
+    ``extension`` (rad); ``sign`` (+1/-1) is the direction of flexion.
+
+    A registered goal kind, so the loop keeps a spring's compiled form across frames (the joint is
+    part of its name)."""
+
+    kind = "limit-spring"
+    targets = ("extension",)
+    params = ("sign", "margin")
 
     def __init__(self, joint: str, extension: float, sign: float, margin: float, weight: float = 1.0) -> None:
         self.joint_name = joint
@@ -73,9 +79,8 @@ class LimitSpring(Goal):
         J[0, ctx.cols == self.dof] = -self.sign
         return GoalEval(np.array([short]), J, degrees=float(np.degrees(short)))
 
-
-# the loop keeps a spring's compiled form across frames (joint is part of its name)
-register_reusable(LimitSpring, ("extension", "sign", "margin", "weight"))
+    def to_dict(self) -> dict:
+        return {**super().to_dict(), "joint": self.joint_name}
 
 
 @dataclass

@@ -38,7 +38,7 @@ from jackpy.behaviors.base import Behavior, BehaviorBase
 from jackpy.behaviors.state import BehaviorState, FootState, HandState
 from jackpy.behaviors.support import BalanceFrame, convex_hull, floor, yaw_of
 from jackpy.ik import Problem, solve
-from jackpy.ik.goals import Aim, CentreOfMass, Goal, Orientation, Plane, Position
+from jackpy.ik.goals import GOAL_TYPES, Aim, CentreOfMass, Goal, Orientation, Plane, Position
 from jackpy.ik.goals.base import Context
 from jackpy.peabody.kinematics import FKResult
 from jackpy.peabody.model import Figure
@@ -48,26 +48,21 @@ CONTACT_HEIGHT = 0.02
 #: distance (m) of the aim point of a direction goal
 FAR = 1.0e3
 
-#: goal types whose compiled form the loop reuses across frames, with the attributes that carry a
-#: frame's targets (copied from the fresh goal a behavior made into the cached one); binding
-#: (site, chain) is part of the cache key, so nothing that ``bind`` resolves is ever copied
-REUSABLE: dict[type, tuple[str, ...]] = {
-    Position: ("target", "weight"),
-    Orientation: ("target", "cx", "cy", "weight"),
-    Aim: ("target", "axis", "c", "weight"),
-    Plane: ("point", "normal", "weight"),
-    CentreOfMass: ("point", "up", "weight"),
-}
-
-
-def register_reusable(cls: type, attributes: tuple[str, ...]) -> None:
-    """Let the loop reuse goals of type ``cls`` across frames, copying ``attributes`` each frame."""
-    REUSABLE[cls] = tuple(attributes)
+def reusable_attributes(cls: type) -> tuple[str, ...] | None:
+    """The attributes that carry a frame's targets of a goal type whose compiled form the loop
+    reuses across frames (copied from the fresh goal a behavior made into the cached one): the
+    registered kind's ``targets``, ``params`` and weight (:data:`jackpy.ik.goals.GOAL_TYPES`).
+    None for types that are not a registered leaf kind. Binding (site, chain) is part of the cache
+    key, so nothing that ``bind`` resolves is ever copied."""
+    kind = getattr(cls, "kind", "")
+    if not kind or GOAL_TYPES.get(kind) is not cls or not cls.targets:
+        return None
+    return cls.targets + tuple(p for p in cls.params if p != "chain") + ("weight",)
 
 
 def _goal_key(goal: Goal) -> tuple | None:
     """Identity of a goal across frames (None: not reusable): type, name, site and chain."""
-    if type(goal) not in REUSABLE:
+    if reusable_attributes(type(goal)) is None:
         return None
     chain = getattr(goal, "chain", None)
     if chain is not None and not isinstance(chain, str):
@@ -503,7 +498,7 @@ class BehaviorLoop:
         if old is None or old is goal:
             cache[key] = goal
             return goal
-        for attr in REUSABLE[type(goal)]:
+        for attr in reusable_attributes(type(goal)) or ():
             setattr(old, attr, getattr(goal, attr))
         return old
 
@@ -566,10 +561,6 @@ class BehaviorLoop:
                 return None
             out.append((e.metres, e.degrees))
         return out
-
-    def _pass(self, goals: list[tuple[Goal, int]], which: str) -> tuple[float, float]:
-        """Solve one pass; returns the worst residual (m, deg)."""
-        return _worst(self._solve_pass(goals, which))
 
 
 def _worst(errs: list[tuple[float, float]]) -> tuple[float, float]:

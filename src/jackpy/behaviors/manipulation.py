@@ -1,4 +1,4 @@
-"""The seven manipulation commands of Jack ([SH4] Table 4.6; behaviors.md §3) plus hand holds.
+"""The seven manipulation commands of Jack ([SH4] Table 4.6; behaviors.md §3) plus grabbing and grasping.
 
 A workbench drag calls one of these per mouse event, then :meth:`BehaviorLoop.step` once per frame,
 and :func:`end_drag` on mouse release. Commands only write goals into the loop's state; the
@@ -49,16 +49,6 @@ def hand_on_site(loop: BehaviorLoop, side: str, pose: np.ndarray) -> None:
     """Reach hand ``side``'s palm site to the world pose ``pose`` and hold it there."""
     move_hand(loop, side, rotation=pose)
     loop.state.hands[side].goal[:3, 3] = np.asarray(pose)[:3, 3]
-
-
-def hold_hand(loop: BehaviorLoop, side: str, obj: object | None = None) -> None:
-    """Hold the hand where it is: in the world, or relative to ``obj`` (an object with ``pose``;
-    the doorknob model: when the object moves the hand follows)."""
-    hs = loop.state.hands[side]
-    palm = _pose(loop, loop.anatomy.hands[side].palm)
-    hs.goal, hs.orient, hs.rules, hs.lean = palm.copy(), True, False, False
-    hs.local = obj
-    hs.local_offset = None if obj is None else rigid_inverse(obj.pose) @ palm
 
 
 def release_hand(loop: BehaviorLoop, side: str) -> None:

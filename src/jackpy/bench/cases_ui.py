@@ -25,7 +25,7 @@ SIZE = (1280, 800)
 def _cad_object(triangles: int = 100_000):
     from jackpy.peabody import Mesh
     from jackpy.scene.cad import CADObject, ImportSettings
-    from jackpy.ui.render import uv_sphere
+    from jackpy.render import uv_sphere
 
     rings = 250
     m = uv_sphere(0.4, rings=rings, sectors=triangles // (2 * rings))
@@ -36,7 +36,7 @@ def _cad_object(triangles: int = 100_000):
 
 def _frame_timer(with_cad: bool, repeat: int):
     from jackpy.ui.app import MOUSE_LEFT, PRESS, App, find_effectors
-    from jackpy.ui.render import offscreen_renderer
+    from jackpy.render import offscreen_renderer
     from jackpy.ui.session import default_scene
 
     env, _ = default_scene()

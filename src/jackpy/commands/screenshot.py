@@ -17,7 +17,7 @@ def register(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from jackpy.ui.render import write_png
+    from jackpy.render import write_png
     from jackpy.ui.screenshot import render_scene
     from jackpy.ui.session import default_scene, load_session
 

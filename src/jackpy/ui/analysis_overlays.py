@@ -13,10 +13,11 @@ can be rendered and checked offscreen:
   colouring, red colliding segments);
 - :func:`reach_lines`, :func:`clearance_lines`: feedback lines.
 
-:class:`AnalysisState` (``app.analysis``) holds what the Analysis panel chose and computed, keeps the
-live analyses (strength, clearance) current each frame, runs callbacks posted by worker threads on
-the main thread (:meth:`AnalysisState.post`; GL work of the report must run where the window's
-context is current), and decorates each frame's scene (:meth:`AnalysisState.decorate`).
+:class:`AnalysisState` (``app.analysis``) holds what the Analysis panel chose and computed on top of
+the document's live analyses (strength, clearance: refreshed by ``Document.step`` after the solve,
+never in the draw), runs callbacks posted by worker threads on the main thread
+(:meth:`AnalysisState.post`; GL work of the report must run where the window's context is current),
+and decorates each frame's scene with overlays (:meth:`AnalysisState.decorate`).
 """
 
 from __future__ import annotations
@@ -29,10 +30,17 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from jackpy.document.analyses import (  # noqa: F401  (re-exported: the panels' names)
+    LiveAnalyses,
+    StrengthReadout,
+    figure_of_interest,
+    scene_objects,
+    segment_strength_colours,
+)
 from jackpy.peabody import Environment, Figure
-from jackpy.ui.render import DrawItem, Lines, Scene
-from jackpy.ui.render.mesh import Mesh as RenderMesh
-from jackpy.ui.render.mesh import lathe
+from jackpy.render import DrawItem, Lines, Scene
+from jackpy.render.mesh import Mesh as RenderMesh
+from jackpy.render.mesh import lathe
 
 if TYPE_CHECKING:
     from jackpy.analysis import Clearance, EyeView, PointReach, Visibility, Workspace
@@ -98,21 +106,6 @@ def workspace_items(key: str = WORKSPACE_MESH, colour=WORKSPACE_COLOUR) -> list[
     return [DrawItem(key, np.eye(4), colour, transparent=True)]
 
 
-def segment_strength_colours(figure: Figure, joint_util: Mapping[str, float]) -> dict[str, tuple[float, ...]]:
-    """``segment -> RGBA``: each segment coloured by the largest utilisation among the joints it
-    touches (segments touching no joint with data: white)."""
-    from jackpy.analysis import strength_colour
-
-    worst: dict[str, float] = {s: 0.0 for s in figure.segments}
-    for j in figure.joints.values():
-        u = joint_util.get(j.name, float("nan"))
-        if np.isnan(u):
-            continue
-        for s in (j.from_seg, j.to_seg):
-            worst[s] = max(worst[s], float(u))
-    return {s: tuple(float(c) for c in strength_colour(u)) + (1.0,) for s, u in worst.items()}
-
-
 def recolour_items(items: Iterable[DrawItem], figure: str, colours: Mapping[str, Any],
                    mesh_key: Callable[[str, str], str]) -> list[DrawItem]:
     """``items`` with the segments of ``figure`` named in ``colours`` drawn in that colour (the
@@ -153,17 +146,6 @@ def scene_targets(env: Environment) -> dict[str, np.ndarray]:
     return out
 
 
-def scene_objects(env: Environment) -> list[Figure]:
-    """The environment's unjointed figures that carry geometry (CAD objects, chairs, tables)."""
-    out = []
-    for fig in env.figures.values():
-        if fig.joints:
-            continue
-        if any(s.psurf is not None and s.psurf.mesh is not None and len(s.psurf.mesh.faces) for s in fig.segments.values()):
-            out.append(fig)
-    return out
-
-
 # ---------------------------------------------------------------------- state
 @dataclass
 class WorkspaceResult:
@@ -179,36 +161,15 @@ class WorkspaceResult:
 
 
 @dataclass
-class StrengthReadout:
-    """Live strength: DOF torques (N m), utilisation, per-joint utilisation, bars of the hand's chain."""
+class AnalysisState(LiveAnalyses):
+    """The analysis choices and results of the workbench (``app.analysis``): the document's live
+    analyses (:class:`~jackpy.document.analyses.LiveAnalyses`, refreshed by ``Document.step``)
+    plus the Analysis panel's jobs, overlay switches and main-thread queue."""
 
-    torques: np.ndarray
-    utilisation: np.ndarray
-    joints: dict[str, float]
-    bars: list
-    segment_colours: dict[str, tuple[float, ...]]
-
-
-@dataclass
-class AnalysisState:
-    """The analysis choices and results of the workbench (``app.analysis``)."""
-
-    hand: str = "right"
     resolution: int = 32
     workspace: WorkspaceResult | None = None
     show_workspace: bool = True
     workspace_job: Any = None
-    load_kg: float = 0.0
-    strength_live: bool = False
-    """Compute strength each frame (the panel sets it while its section is open)."""
-    torque_colouring: bool = False
-    strength: StrengthReadout | None = None
-    strength_error: str | None = None
-    clearance_on: bool = False
-    clearance_object: str | None = None
-    clearance: Clearance | None = None
-    colliding: set[str] = field(default_factory=set)
-    clearance_error: str | None = None
     show_cones: bool = False
     eye_view_open: bool = False
     reach_target: str | None = None
@@ -216,10 +177,6 @@ class AnalysisState:
     visibility: Visibility | None = None
     report_job: Any = None
     _main_queue: queue.Queue[Callable[[], None]] = field(default_factory=queue.Queue)
-    _checker: Any = None
-    _checker_key: tuple = ()
-    _live_key: tuple = ()
-    _tables: dict = field(default_factory=dict)
     _uploaded: dict = field(default_factory=dict)
     _eye: Any = None
     closed: bool = False
@@ -239,99 +196,9 @@ class AnalysisState:
                 return
             fn()
 
-    # ------------------------------------------------------------------ live analyses
     def figure(self, app: App) -> Figure | None:
-        """The analysed figure: the app's figure of interest."""
-        return app.figure_of_interest()
-
-    def strength_table(self, figure: Figure):
-        """The figure's strength table (cached per figure object); raises when it has none."""
-        key = id(figure)
-        if key not in self._tables:
-            from jackpy.analysis import dof_strengths
-            from jackpy.body.strength import strength_table
-
-            try:
-                self._tables[key] = (figure, dof_strengths(strength_table(figure)), None)
-            except Exception as exc:  # synthetic figures have no body specification
-                self._tables[key] = (figure, None, f"{exc}")
-        _, table, error = self._tables[key]
-        if table is None:
-            raise LookupError(error)
-        return table
-
-    def update_strength(self, figure: Figure) -> None:
-        """Torques and utilisation at the figure's posture holding ``load_kg`` in the chosen hand."""
-        from jackpy.analysis import (
-            Chain,
-            Load,
-            figure_parts,
-            joint_torques,
-            joint_utilisation,
-            strength_bars,
-            utilisation,
-        )
-
-        try:
-            table = self.strength_table(figure)
-            hand = figure_parts(figure).hands[self.hand]
-        except Exception as exc:
-            self.strength, self.strength_error = None, f"strength not available: {exc}"
-            return
-        loads = [Load.held_mass(figure, hand.segment, hand.site, self.load_kg)] if self.load_kg > 0 else []
-        tau = joint_torques(figure, loads)
-        util = utilisation(figure, tau, table)
-        ju = joint_utilisation(figure, util)
-        names = figure.dof_names()
-        chain = Chain(figure, hand.start_joint, hand.segment, np.zeros(3))
-        arm = [names[i] for i in chain.dofs if names[i] in table]
-        self.strength = StrengthReadout(tau, util, ju, strength_bars(figure, tau, table, arm),
-                                        segment_strength_colours(figure, ju))
-        self.strength_error = None
-
-    def update_clearance(self, app: App, figure: Figure) -> None:
-        """Rebuild the checker when the figure or objects changed, then query this posture."""
-        from jackpy.analysis import ClearanceChecker
-
-        objects = [o for o in scene_objects(app.env) if o is not figure]
-        key = (id(figure), tuple(id(o) for o in objects))
-        try:
-            if self._checker is None or key != self._checker_key:
-                self._checker = ClearanceChecker(figure, objects)
-                self._checker_key = key
-            chk = self._checker
-            chk.update()
-            self.colliding = chk.colliding_segments()
-            names = [o.name for o in objects]
-            if self.clearance_object not in names:
-                self.clearance_object = names[0] if names else None
-            self.clearance = chk.clearance(self.clearance_object) if self.clearance_object else None
-            self.clearance_error = None
-        except Exception as exc:  # no python-fcl, no geometry on the figure
-            self.clearance, self.colliding, self.clearance_error = None, set(), f"{exc}"
-
-    def refresh(self, app: App) -> None:
-        """Bring the live analyses up to date when the posture, placements or choices changed."""
-        fig = self.figure(app)
-        if fig is None:
-            self.strength, self.clearance, self.colliding = None, None, set()
-            return
-        want_strength = self.strength_live or self.torque_colouring
-        state = [fig.q.tobytes(), fig.location.tobytes(), id(fig), self.load_kg, self.hand,
-                 want_strength, self.clearance_on, self.clearance_object]
-        if self.clearance_on:
-            state += [o.location.tobytes() for o in app.env.figures.values() if not o.joints]
-            state.append(len(app.env.figures))
-        key = tuple(state)
-        if key == self._live_key:
-            return
-        self._live_key = key
-        if want_strength:
-            self.update_strength(fig)
-        if self.clearance_on:
-            self.update_clearance(app, fig)
-        else:
-            self.clearance, self.colliding = None, set()
+        """The analysed figure: the document's figure of interest."""
+        return figure_of_interest(app.env)
 
     # ------------------------------------------------------------------ per frame
     def upload(self, renderer, key: str, mesh: RenderMesh, version: object) -> None:
@@ -370,9 +237,9 @@ class AnalysisState:
         return scene
 
     def decorate(self, app: App, scene: Scene) -> Scene:
-        """Per frame, before the main render: run posted work, refresh live analyses, add overlays."""
+        """Per frame, before the main render: run posted work, add the overlays of the results
+        (the live analyses were refreshed by ``Document.step``, not here)."""
         self.pump()
-        self.refresh(app)
         return self.overlay(app, scene, app.renderer)
 
     def after_draw(self, app: App) -> None:

@@ -20,6 +20,8 @@ from typing import Literal
 
 import numpy as np
 
+from jackpy.render.projection import orthographic_matrix, perspective_matrix
+
 Button = Literal["left", "middle", "right"]
 """A mouse button by its position on the mouse."""
 
@@ -48,29 +50,6 @@ def _rot_x(angle: float) -> np.ndarray:
 def _rot_y(angle: float) -> np.ndarray:
     c, s = np.cos(angle), np.sin(angle)
     return np.array([[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]])
-
-
-def perspective_matrix(fov_y: float, aspect: float, near: float, far: float) -> np.ndarray:
-    """OpenGL perspective projection; ``fov_y`` in radians, ``aspect`` = width / height."""
-    f = 1.0 / np.tan(0.5 * fov_y)
-    m = np.zeros((4, 4))
-    m[0, 0] = f / aspect
-    m[1, 1] = f
-    m[2, 2] = (far + near) / (near - far)
-    m[2, 3] = 2.0 * far * near / (near - far)
-    m[3, 2] = -1.0
-    return m
-
-
-def orthographic_matrix(half_height: float, aspect: float, near: float, far: float) -> np.ndarray:
-    """OpenGL orthographic projection of a view volume ``2*half_height`` metres tall."""
-    half_width = half_height * aspect
-    m = np.eye(4)
-    m[0, 0] = 1.0 / half_width
-    m[1, 1] = 1.0 / half_height
-    m[2, 2] = -2.0 / (far - near)
-    m[2, 3] = -(far + near) / (far - near)
-    return m
 
 
 @dataclass

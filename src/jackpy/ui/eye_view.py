@@ -2,7 +2,7 @@
 
 The camera is :func:`jackpy.analysis.eye_view` (eye point between the eyes, gaze, 90 degrees
 vertical at 4:3, about 106 degrees horizontal). It renders with a second
-:class:`~jackpy.ui.render.Renderer` on the SAME moderngl context as the window (a second EGL
+:class:`~jackpy.render.Renderer` on the SAME moderngl context as the window (a second EGL
 context beside a GLX window fails under Mesa), into that renderer's own framebuffers; the window
 shows the resolved colour texture with ``imgui.image``. The head and everything distal to it (eyes,
 jaw) are left out of the picture: the eye point lies inside them.
@@ -15,14 +15,14 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from jackpy.peabody import Figure
-from jackpy.ui.render import Scene
+from jackpy.render import Scene
 from jackpy.ui.scene_view import SceneView
 
 if TYPE_CHECKING:
     from jackpy.analysis import EyeView
     from jackpy.ui.app import App
     from jackpy.ui.panels import UiState
-    from jackpy.ui.render import Renderer
+    from jackpy.render import Renderer
 
 EYE_VIEW_SIZE = (400, 300)
 """Pixels of the eye view (4:3, the eye camera's aspect)."""
@@ -63,7 +63,7 @@ class EyeViewport:
         """Draw the current scene from the figure's eyes; False (with :attr:`error`) when the
         figure has no recognised eyes or nothing is drawn yet."""
         from jackpy.analysis import eye_view
-        from jackpy.ui.render import Renderer
+        from jackpy.render import Renderer
 
         fig = app.figure_of_interest()
         if fig is None or app.renderer is None:
@@ -76,7 +76,6 @@ class EyeViewport:
             return False
         if self.renderer is None or self.renderer.ctx is not app.renderer.ctx:
             self.renderer = Renderer(app.renderer.ctx, self.size)
-        self.view.cad_figures = set(app.view.cad_figures)
         self.view.upload(self.renderer, app.env)
         scene = eye_scene(app, self.view, fig)
         self.renderer.render(scene, self.eye.view_matrix(), self.eye.projection(near=0.03))

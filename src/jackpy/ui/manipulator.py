@@ -23,7 +23,7 @@ import numpy as np
 
 from jackpy.ui import operator_math as om
 from jackpy.ui.operator_math import Button, Primitive, PrimitiveKind
-from jackpy.ui.render import Lines, Triad
+from jackpy.render import Lines, Triad
 
 Ray = tuple[np.ndarray, np.ndarray]
 """A mouse ray: origin and unit direction in world (m)."""

@@ -1,7 +1,7 @@
 """Figures and environments as the renderer's plain draw data (``render.Scene``), with picking ids.
 
 The view reads state and never owns it: each frame it runs forward kinematics of every figure and
-emits one :class:`~jackpy.ui.render.DrawItem` per segment (its psurf mesh, or a box around its sites
+emits one :class:`~jackpy.render.DrawItem` per segment (its psurf mesh, or a box around its sites
 when it has none) or, in skeleton mode, balls at the joints and sticks between them. Meshes are
 uploaded to the renderer once and re-uploaded only when a segment's geometry changes (a rescale).
 
@@ -19,11 +19,11 @@ import numpy as np
 
 from jackpy.peabody import Environment, Figure, Segment
 from jackpy.scene.cad import CADObject
-from jackpy.ui.render import DrawItem, GoalMarker, Lines, Scene, Spheres, Sticks, Triad
-from jackpy.ui.render.mesh import Mesh as RenderMesh
+from jackpy.render import DrawItem, GoalMarker, Lines, Scene, Spheres, Sticks, Triad
+from jackpy.render.mesh import Mesh as RenderMesh
 
 if TYPE_CHECKING:
-    from jackpy.ui.render import Renderer
+    from jackpy.render import Renderer
 
 FIGURE_COLOR = (0.86, 0.70, 0.58, 1.0)
 OBJECT_COLOR = (0.62, 0.64, 0.68, 1.0)
@@ -92,7 +92,7 @@ def segment_mesh(segment: Segment, figure: Figure | None = None,
 
 
 def _site_box(segment: Segment) -> RenderMesh:
-    from jackpy.ui.render.mesh import box
+    from jackpy.render.mesh import box
 
     pts = np.array([s.location[:3, 3] for s in segment.sites.values()] or [np.zeros(3)])
     lo, hi = pts.min(axis=0), pts.max(axis=0)
@@ -121,8 +121,6 @@ class SceneView:
         self._segment_ids: dict[tuple[str, str], int] = {}
         self._targets: dict[int, PickTarget] = {}
         self._geometry: dict[str, tuple] = {}
-        self.cad_figures: set[str] = set()
-        """Figures drawn translucent (imported CAD)."""
 
     # ------------------------------------------------------------------ picking ids
     def segment_pick_id(self, figure: str, segment: str) -> int:
@@ -176,7 +174,7 @@ class SceneView:
             if skeleton and not is_object(fig):
                 self._skeleton(scene, fig, fk.segments, highlight if hl_fig else None)
                 continue
-            cad = fig.name in self.cad_figures
+            cad = isinstance(fig, CADObject)
             for i, name in enumerate(kin.segment_names):
                 seg = fig.segments[name]
                 color = CAD_COLOR if cad else ATTRIBUTE_COLORS.get(

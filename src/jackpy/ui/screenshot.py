@@ -20,7 +20,7 @@ def render_scene(env: Environment, size: tuple[int, int] = (1280, 800), view: st
                  skeleton: bool = False) -> np.ndarray:
     """(H, W, 4) uint8 RGBA image of ``env`` from ``view`` (``front``, ``side``, ``top``, ``iso``)."""
     from jackpy.ui.app import App, Settings
-    from jackpy.ui.render import offscreen_renderer
+    from jackpy.render import offscreen_renderer
 
     if view not in VIEWS:
         raise ValueError(f"unknown view {view!r}; use one of {', '.join(VIEWS)}")
@@ -37,7 +37,7 @@ def render_scene(env: Environment, size: tuple[int, int] = (1280, 800), view: st
 
 def save_view(app: "App", path: str | os.PathLike[str]) -> None:
     """Save what the app's 3-D view shows (last frame, without the panels) as a PNG."""
-    from jackpy.ui.render import write_png
+    from jackpy.render import write_png
 
     if app.renderer is None:
         raise ValueError("no renderer: nothing has been drawn")

@@ -27,7 +27,7 @@ from jackpy.errors import JackpyError
 from jackpy.ui.app import App, KEY_ESCAPE, MOD_CONTROL, PRESS
 from jackpy.ui.gizmo import Gizmo
 from jackpy.ui.panels import UiState, draw_all
-from jackpy.ui.render import Renderer
+from jackpy.render import Renderer
 
 KEY_O, KEY_Q, KEY_S, KEY_T, KEY_R = ord("O"), ord("Q"), ord("S"), ord("T"), ord("R")
 IDLE_AFTER_FRAMES = 3

@@ -1,23 +1,64 @@
-"""The workbench's imgui panels, one per module; each is a ``draw(app, ui)`` function of the state
-it shows. :func:`draw_all` draws the menu bar and every open panel."""
+"""The workbench's imgui panels, discovered like the CLI's commands: every module in this package
+that defines ``PANEL = Panel(...)`` is one panel (a title, a ``draw(app, ui)`` function, whether
+it starts open, its place in the View menu). Adding a panel is adding one module; nothing else
+lists them. :func:`draw_all` draws the menu bar and every open panel.
+
+Per-panel widget state (chosen indices, text fields) lives in the window's :class:`UiState`
+(:meth:`UiState.panel_state`), not in module globals.
+"""
 
 from __future__ import annotations
 
+import importlib
+import pkgutil
+from collections.abc import Callable
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
     from jackpy.ui.app import App
 
 
+@dataclass(frozen=True)
+class Panel:
+    """A panel: ``title`` (its window title and View-menu entry), ``draw(app, ui)``, ``open`` at
+    start, ``order`` in the menu and drawing, and ``always``: drawn every frame even when closed
+    (the panel reads ``ui.open_panels`` itself, e.g. to tell the app to stop rendering for it)."""
+
+    title: str
+    draw: Callable[[App, UiState], None]
+    open: bool = False
+    order: int = 100
+    always: bool = False
+
+
+_PANELS: list[Panel] | None = None
+
+
+def panels() -> list[Panel]:
+    """Every panel of this package, in menu order (the modules are imported once)."""
+    global _PANELS
+    if _PANELS is None:
+        found = []
+        for info in pkgutil.iter_modules(__path__):
+            module = importlib.import_module(f"{__name__}.{info.name}")
+            panel = getattr(module, "PANEL", None)
+            if isinstance(panel, Panel):
+                found.append(panel)
+        titles = [p.title for p in found]
+        dupes = {t for t in titles if titles.count(t) > 1}
+        if dupes:
+            raise RuntimeError(f"two panels are titled {sorted(dupes)}")
+        _PANELS = sorted(found, key=lambda p: (p.order, p.title))
+    return list(_PANELS)
+
+
 @dataclass
 class UiState:
-    """Window-level UI state: which panels are open and the pending path prompt."""
+    """Window-level UI state: which panels are open, each panel's widget state, the pending prompt."""
 
-    open_panels: dict[str, bool] = field(default_factory=lambda: {
-        "Scene": True, "Joints": True, "Goals": True, "Figure": False, "Log": True,
-        "Analysis": False, "Eye view": False,
-        "Behaviors": False, "Devices": False})
+    open_panels: dict[str, bool] = field(default_factory=lambda: {p.title: p.open for p in panels()})
+    panel_states: dict[str, dict[str, Any]] = field(default_factory=dict)
     prompt: str | None = None
     """Which path prompt is open: ``"open"``, ``"save_as"``, ``"import"``, ``"screenshot"``."""
     prompt_text: str = ""
@@ -28,30 +69,19 @@ class UiState:
     """Units and up axis chosen in the Import CAD dialog."""
     import_up: str = "y"
 
+    def panel_state(self, title: str, defaults: dict[str, Any] | None = None) -> dict[str, Any]:
+        """Panel ``title``'s widget state, made from ``defaults`` on first use."""
+        state = self.panel_states.get(title)
+        if state is None:
+            state = self.panel_states[title] = dict(defaults or {})
+        return state
 
-def draw_all(app: "App", ui: UiState) -> None:
+
+def draw_all(app: App, ui: UiState) -> None:
     """Draw the menu bar, the open panels and any prompt."""
-    from jackpy.ui.panels import (
-        behaviors,
-        devices,
-        figure_properties,
-        goals,
-        joint_inspector,
-        log,
-        menu_bar,
-        scene_tree,
-    )
+    from jackpy.ui.panels import menu_bar
 
     menu_bar.draw(app, ui)
-    panels = {"Scene": scene_tree.draw, "Joints": joint_inspector.draw, "Goals": goals.draw,
-              "Figure": figure_properties.draw, "Log": log.draw, "Behaviors": behaviors.draw,
-              "Devices": devices.draw}
-    for name, fn in panels.items():
-        if ui.open_panels.get(name):
-            fn(app, ui)
-    from jackpy.ui import eye_view
-    from jackpy.ui.panels import analysis
-
-    if ui.open_panels.get("Analysis"):
-        analysis.draw(app, ui)
-    eye_view.draw_window(app, ui)  # also tells the app whether to render the eye view
+    for p in panels():
+        if p.always or ui.open_panels.get(p.title):
+            p.draw(app, ui)

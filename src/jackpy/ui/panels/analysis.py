@@ -28,6 +28,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from jackpy.errors import JackpyError
+from jackpy.ui.panels import Panel
 from jackpy.peabody import Environment
 from jackpy.ui.analysis_overlays import (
     AnalysisState,
@@ -349,27 +350,28 @@ def start_report(app: App, folder: str | Path, figures: str = "female:5,male:95"
 
 
 # ---------------------------------------------------------------------- imgui
-_ui = {"target": 0, "clear": 0, "view": 0, "folder": "report", "figures": "female:5,male:95", "open_all": False}
-"""The panel's widget state; ``open_all`` opens every section (tests)."""
+DEFAULTS = {"target": 0, "clear": 0, "view": 0, "folder": "report", "figures": "female:5,male:95", "open_all": False}
+"""The panel's widget state (in the UI state, ``ui.panel_state("Analysis")``); ``open_all`` opens
+every section (tests)."""
 
 
-def _header(label: str, default_open: bool = False) -> bool:
+def _header(w: dict, label: str, default_open: bool = False) -> bool:
     from imgui_bundle import imgui
 
-    if _ui["open_all"]:
+    if w["open_all"]:
         imgui.set_next_item_open(True)
     return imgui.collapsing_header(label, imgui.TreeNodeFlags_.default_open if default_open else 0)
 
 
-def _combo(label: str, key: str, items: list[str]) -> str | None:
+def _combo(w: dict, label: str, key: str, items: list[str]) -> str | None:
     from imgui_bundle import imgui
 
     if not items:
         imgui.text_disabled(f"{label}: none in the scene")
         return None
-    _ui[key] = min(_ui[key], len(items) - 1)
-    _ui[key] = imgui.combo(label, _ui[key], items)[1]
-    return items[_ui[key]]
+    w[key] = min(w[key], len(items) - 1)
+    w[key] = imgui.combo(label, w[key], items)[1]
+    return items[w[key]]
 
 
 def _progress_row(job: Job | None, cancel: Callable[[], None] | None) -> bool:
@@ -407,6 +409,7 @@ def draw(app: App, ui: UiState) -> None:
     imgui.set_next_window_pos((vp.size.x - 600, 30), imgui.Cond_.first_use_ever)
     imgui.set_next_window_size((300, 560), imgui.Cond_.first_use_ever)
     visible, ui.open_panels["Analysis"] = imgui.begin("Analysis", ui.open_panels["Analysis"])
+    w = ui.panel_state("Analysis", DEFAULTS)
     state.strength_live = False
     if visible:
         fig = app.figure_of_interest()
@@ -416,18 +419,18 @@ def draw(app: App, ui: UiState) -> None:
             imgui.text(f"figure: {fig.name}")
             imgui.set_next_item_width(90)
             state.hand = HANDS[imgui.combo("hand", HANDS.index(state.hand), HANDS)[1]]
-            _reach_section(app, state)
-            _strength_section(app, state)
-            _clearance_section(app, state)
-            _view_section(app, state, ui)
-            _report_section(app, state)
+            _reach_section(app, state, w)
+            _strength_section(app, state, w)
+            _clearance_section(app, state, w)
+            _view_section(app, state, ui, w)
+            _report_section(app, state, w)
     imgui.end()
 
 
-def _reach_section(app: App, state: AnalysisState) -> None:
+def _reach_section(app: App, state: AnalysisState, w: dict) -> None:
     from imgui_bundle import imgui
 
-    if not _header("Reach", True):
+    if not _header(w, "Reach##section", True):
         return
     imgui.set_next_item_width(120)
     state.resolution = imgui.slider_int("resolution", state.resolution, 8, 96)[1]
@@ -445,7 +448,7 @@ def _reach_section(app: App, state: AnalysisState) -> None:
             else:
                 imgui.text_colored((1.0, 0.5, 0.4, 1.0), f"  {name}: outside by {dist * 100:.0f} cm")
     imgui.separator()
-    target = _combo("site", "target", list(scene_targets(app.env)))
+    target = _combo(w, "site", "target", list(scene_targets(app.env)))
     if target is not None:
         if imgui.button("Reach"):
             _run(app, lambda: reach_target(app, target))
@@ -460,12 +463,12 @@ def _reach_section(app: App, state: AnalysisState) -> None:
             imgui.text(f"{state.reach_target}: {state.reach.describe()}")
 
 
-def _strength_section(app: App, state: AnalysisState) -> None:
+def _strength_section(app: App, state: AnalysisState, w: dict) -> None:
     from imgui_bundle import imgui
 
     from jackpy.analysis import strength_colour
 
-    if not _header("Strength"):
+    if not _header(w, "Strength##section"):
         return
     state.strength_live = True
     imgui.set_next_item_width(120)
@@ -485,14 +488,14 @@ def _strength_section(app: App, state: AnalysisState) -> None:
         imgui.pop_style_color()
 
 
-def _clearance_section(app: App, state: AnalysisState) -> None:
+def _clearance_section(app: App, state: AnalysisState, w: dict) -> None:
     from imgui_bundle import imgui
 
-    if not _header("Clearance"):
+    if not _header(w, "Clearance##section"):
         return
     state.clearance_on = imgui.checkbox("live clearance and collisions", state.clearance_on)[1]
     names = [o.name for o in scene_objects(app.env)]
-    chosen = _combo("object", "clear", names)
+    chosen = _combo(w, "object", "clear", names)
     if chosen is not None:
         state.clearance_object = chosen
     if not state.clearance_on:
@@ -506,15 +509,15 @@ def _clearance_section(app: App, state: AnalysisState) -> None:
         imgui.text_colored((1.0, 0.3, 0.25, 1.0), "colliding: " + ", ".join(sorted(state.colliding)))
 
 
-def _view_section(app: App, state: AnalysisState, ui: UiState) -> None:
+def _view_section(app: App, state: AnalysisState, ui: UiState, w: dict) -> None:
     from imgui_bundle import imgui
 
-    if not _header("View"):
+    if not _header(w, "View##section"):
         return
     state.show_cones = imgui.checkbox("view cones", state.show_cones)[1]
     imgui.same_line()
     ui.open_panels["Eye view"] = imgui.checkbox("eye view", bool(ui.open_panels.get("Eye view")))[1]
-    target = _combo("target", "view", view_targets(app.env))
+    target = _combo(w, "target", "view", view_targets(app.env))
     if target is not None and imgui.button("Measure visibility"):
         _run(app, lambda: measure_visibility(app, target))
     v = state.visibility
@@ -524,15 +527,18 @@ def _view_section(app: App, state: AnalysisState, ui: UiState) -> None:
             imgui.text(f"  hidden by {name} ({100 * share:.0f}%)")
 
 
-def _report_section(app: App, state: AnalysisState) -> None:
+def _report_section(app: App, state: AnalysisState, w: dict) -> None:
     from imgui_bundle import imgui
 
-    if not _header("Report"):
+    if not _header(w, "Report##section"):
         return
     imgui.set_next_item_width(180)
-    _ui["folder"] = imgui.input_text("folder", _ui["folder"])[1]
+    w["folder"] = imgui.input_text("folder", w["folder"])[1]
     imgui.set_next_item_width(180)
-    _ui["figures"] = imgui.input_text("figures", _ui["figures"])[1]
+    w["figures"] = imgui.input_text("figures", w["figures"])[1]
     if not _progress_row(state.report_job, None):
         if imgui.button("Report..."):
-            _run(app, lambda: start_report(app, _ui["folder"], _ui["figures"]))
+            _run(app, lambda: start_report(app, w["folder"], w["figures"]))
+
+
+PANEL = Panel("Analysis", draw, order=60)

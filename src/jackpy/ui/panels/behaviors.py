@@ -15,6 +15,7 @@ from imgui_bundle import imgui
 
 from jackpy.behaviors import describe
 from jackpy.behaviors.base import ParamSpec, validate
+from jackpy.ui.panels import Panel
 
 if TYPE_CHECKING:
     from jackpy.ui.app import App
@@ -187,3 +188,6 @@ def _param_row(app: "App", b: Any, spec: ParamSpec) -> None:
         set_param(app, b, spec.name, new)
     if imgui.is_item_deactivated_after_edit():
         end_param_drag(app, b, spec.name)
+
+
+PANEL = Panel("Behaviors", draw, order=50)

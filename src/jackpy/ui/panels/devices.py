@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING, Any
 from imgui_bundle import imgui
 
 from jackpy.errors import DeviceError, JackpyError
+from jackpy.ui.panels import Panel
 
 if TYPE_CHECKING:
     from jackpy.behaviors.sensor_drive import DriveStatus
@@ -214,3 +215,6 @@ def draw(app: "App", ui: "UiState") -> None:
         if link.error:
             imgui.text_wrapped(link.error)
     imgui.end()
+
+
+PANEL = Panel("Devices", draw, order=70)

@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 from imgui_bundle import imgui
 
+from jackpy.ui.panels import Panel
 from jackpy.ui.scene_view import SegmentPick
 
 if TYPE_CHECKING:
@@ -35,15 +36,13 @@ def draw(app: "App", ui: "UiState") -> None:
                 imgui.text(f"mass {fig.total_mass:.1f} kg, COM y {com[1]:.1f} cm")
             inside = np.all((fig.q >= fig.lower - 1e-9) & (fig.q <= fig.upper + 1e-9))
             imgui.text("all joints within limits" if inside else "some joints outside limits")
-            _body(app, fig)
+            _body(app, fig, ui.panel_state("Figure"))
     imgui.end()
 
 
-_pending: dict[str, dict] = {}
-"""Per figure: the sex / population / percentile chosen but not applied yet."""
-
-
-def _body(app: "App", fig) -> None:
+def _body(app: "App", fig, pending: dict) -> None:
+    """The body's rows; ``pending`` (the panel's state) holds per figure the sex / population /
+    percentile chosen but not applied yet."""
     from jackpy.body.anthropometry import SEXES, available_populations
 
     spec = getattr(fig, "body_spec", None)
@@ -52,7 +51,7 @@ def _body(app: "App", fig) -> None:
     imgui.separator()
     imgui.text(f"{spec.sex}, P{spec.percentile:g} of {spec.population}")
     imgui.text(f"stature {spec.stature * 100:.1f} cm, mass {spec.mass:.1f} kg")
-    pend = _pending.setdefault(fig.name, {"sex": spec.sex, "population": spec.population,
+    pend = pending.setdefault(fig.name, {"sex": spec.sex, "population": spec.population,
                                           "percentile": float(spec.percentile)})
     sexes = list(SEXES)
     pops = available_populations() or [spec.population]
@@ -67,5 +66,8 @@ def _body(app: "App", fig) -> None:
     imgui.begin_disabled(same)
     if imgui.button("Rescale in place"):
         app.rescale_figure(fig.name, pend["sex"], round(pend["percentile"]), pend["population"])
-        _pending.pop(fig.name, None)
+        pending.pop(fig.name, None)
     imgui.end_disabled()
+
+
+PANEL = Panel("Figure", draw, order=40)

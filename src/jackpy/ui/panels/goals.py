@@ -10,14 +10,22 @@ from typing import TYPE_CHECKING
 
 from imgui_bundle import imgui
 
+from jackpy.document.goals import placeable_kinds
+from jackpy.ui.panels import Panel
 from jackpy.ui.scene_view import GoalPick, SegmentPick, is_object
 
 if TYPE_CHECKING:
     from jackpy.ui.app import App
     from jackpy.ui.panels import UiState
 
-KINDS = ["position", "orientation", "position+orientation", "aim", "plane", "half-space"]
-"""Kinds the add row offers (aim: the site's z at a point; plane/half-space: through the site, normal up)."""
+ADD_DEFAULTS = {"site": 0, "kind": 0}
+"""The add row's chosen site and kind indices (the panel's state in the UI state)."""
+
+
+def kinds() -> list[str]:
+    """The kinds the add row offers: every registered goal kind a site can take
+    (:func:`jackpy.document.goals.placeable_kinds`: built-in ones and any module's own)."""
+    return placeable_kinds()
 
 
 def draw(app: "App", ui: "UiState") -> None:
@@ -26,7 +34,7 @@ def draw(app: "App", ui: "UiState") -> None:
     imgui.set_next_window_size((280, 300), imgui.Cond_.first_use_ever)
     visible, ui.open_panels["Goals"] = imgui.begin("Goals", ui.open_panels["Goals"])
     if visible:
-        _add_row(app)
+        _add_row(app, ui.panel_state("Goals", ADD_DEFAULTS))
         imgui.separator()
         for g in list(app.goals):
             imgui.push_id(g.key)
@@ -48,7 +56,7 @@ def draw(app: "App", ui: "UiState") -> None:
             if imgui.is_item_activated():
                 app.begin_edit()
             if changed:
-                g.weight = max(0.0, w)
+                g.weight = w
                 app.goals_changed()
             if imgui.is_item_deactivated_after_edit():
                 app.end_edit(f"weight of {g.key}")
@@ -70,22 +78,23 @@ def _set(goal: object, name: str, value: object) -> None:
     setattr(goal, name, value)
 
 
-_add = {"site": 0, "kind": 0}
-"""The add row's chosen site and kind indices."""
-
-
-def _add_row(app: "App") -> None:
+def _add_row(app: "App", state: dict) -> None:
     sel = app.selection
     fig = app.env.figures.get(sel.figure) if isinstance(sel, SegmentPick) else None
     if fig is None or is_object(fig):
         imgui.text_disabled("Select a segment to add a goal on its site.")
         return
     sites = [f"{sel.segment}.{s}" for s in fig.segments[sel.segment].sites]
-    _add["site"] = min(_add["site"], len(sites) - 1)
+    names = kinds()
+    state["site"] = min(state["site"], len(sites) - 1)
+    state["kind"] = min(state["kind"], len(names) - 1)
     imgui.set_next_item_width(150)
-    _add["site"] = imgui.combo("site", _add["site"], sites)[1]
+    state["site"] = imgui.combo("site", state["site"], sites)[1]
     imgui.set_next_item_width(150)
-    _add["kind"] = imgui.combo("kind", _add["kind"], KINDS)[1]
+    state["kind"] = imgui.combo("kind", state["kind"], names)[1]
     if imgui.button("Add goal") and sites:
-        site, kind = sites[_add["site"]], KINDS[_add["kind"]]
-        app.command(f"add goal {fig.name}:{site}", lambda: app.add_goal(fig, site, kind))
+        site, kind = sites[state["site"]], names[state["kind"]]
+        app.command(f"add {kind} goal {fig.name}:{site}", lambda: app.add_goal(fig, site, kind))
+
+
+PANEL = Panel("Goals", draw, open=True, order=30)

@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 from imgui_bundle import imgui
 
+from jackpy.ui.panels import Panel
 from jackpy.ui.scene_view import SegmentPick, is_object
 
 if TYPE_CHECKING:
@@ -15,8 +16,8 @@ if TYPE_CHECKING:
     from jackpy.ui.panels import UiState
 
 
-_state: dict[str, str | None] = {"focus": None}
-"""The joint opened for the last selection (a new selection opens its joint once)."""
+DEFAULTS: dict[str, str | None] = {"focus": None}
+"""The panel's state: the joint opened for the last selection (a new selection opens its joint once)."""
 
 
 def draw(app: "App", ui: "UiState") -> None:
@@ -35,8 +36,9 @@ def draw(app: "App", ui: "UiState") -> None:
                 kin = fig.kinematics()
                 pj = kin.parent_joint[kin.segment_index[sel.segment]]
                 focus = kin.joint_names[pj] if pj >= 0 else None
-            refocus = focus is not None and focus != _state["focus"]
-            _state["focus"] = focus
+            state = ui.panel_state("Joints", DEFAULTS)
+            refocus = focus is not None and focus != state["focus"]
+            state["focus"] = focus
             for joint in fig.joints.values():
                 if refocus:
                     imgui.set_next_item_open(joint.name == focus, imgui.Cond_.always)
@@ -52,11 +54,11 @@ def draw(app: "App", ui: "UiState") -> None:
                     if imgui.is_item_activated():
                         app.begin_edit()
                     if changed:
-                        disp = joint.displacement.copy()
-                        disp[k] = float(np.clip(v / f, dof.lower, dof.upper))
-                        joint.displacement = disp
-                        app.posture_changed(fig)
+                        app.doc.set_dof(fig, joint.name, k, v / f)  # through the figure, clamped
                     if imgui.is_item_deactivated_after_edit():
                         app.end_edit(f"set {joint.name}[{k}]")
                 imgui.tree_pop()
     imgui.end()
+
+
+PANEL = Panel("Joints", draw, open=True, order=20)

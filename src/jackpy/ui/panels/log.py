@@ -6,6 +6,8 @@ from typing import TYPE_CHECKING
 
 from imgui_bundle import imgui
 
+from jackpy.ui.panels import Panel
+
 if TYPE_CHECKING:
     from jackpy.ui.app import App
     from jackpy.ui.panels import UiState
@@ -25,3 +27,6 @@ def draw(app: "App", ui: "UiState") -> None:
         if imgui.get_scroll_y() >= imgui.get_scroll_max_y():
             imgui.set_scroll_here_y(1.0)
     imgui.end()
+
+
+PANEL = Panel("Log", draw, open=True, order=90)

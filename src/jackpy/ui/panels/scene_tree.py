@@ -6,6 +6,7 @@ from typing import TYPE_CHECKING
 
 from imgui_bundle import imgui
 
+from jackpy.ui.panels import Panel
 from jackpy.ui.scene_view import SegmentPick, is_object
 
 if TYPE_CHECKING:
@@ -28,3 +29,6 @@ def draw(app: "App", ui: "UiState") -> None:
                         app.select(target)
                 imgui.tree_pop()
     imgui.end()
+
+
+PANEL = Panel("Scene", draw, open=True, order=10)

@@ -5,11 +5,11 @@ sticks, frame triads, goal markers and lines; output is an anti-aliased image, r
 pixels, and an id buffer for picking. Nothing here knows about figures.
 """
 
-from jackpy.ui.render.mesh import Mesh, arrow, box, cone, cylinder, lathe, uv_sphere, vertex_normals
-from jackpy.ui.render.image import write_png
-from jackpy.ui.render.offscreen import create_egl_context, offscreen_renderer
-from jackpy.ui.render.renderer import Renderer
-from jackpy.ui.render.scene import DrawItem, GoalMarker, Grid, Lines, Scene, Spheres, Sticks, Triad
+from jackpy.render.mesh import Mesh, arrow, box, cone, cylinder, lathe, uv_sphere, vertex_normals
+from jackpy.render.image import write_png
+from jackpy.render.offscreen import create_egl_context, offscreen_renderer
+from jackpy.render.renderer import Renderer
+from jackpy.render.scene import DrawItem, GoalMarker, Grid, Lines, Scene, Spheres, Sticks, Triad
 
 __all__ = [
     "DrawItem", "GoalMarker", "Grid", "Lines", "Mesh", "Renderer", "Scene", "Spheres", "Sticks",

@@ -1,6 +1,6 @@
 """Undo stack: one step per command, redo cleared by a new command, bounded."""
 
-from jackpy.ui.undo import UndoStack
+from jackpy.document.undo import UndoStack
 
 
 def test_undo_redo_round_trip():

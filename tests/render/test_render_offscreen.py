@@ -5,7 +5,7 @@ import pytest
 from PIL import Image
 
 from jackpy.ui.camera import OrbitCamera
-from jackpy.ui.render import (
+from jackpy.render import (
     DrawItem,
     GoalMarker,
     Lines,
@@ -19,8 +19,8 @@ from jackpy.ui.render import (
     offscreen_renderer,
     uv_sphere,
 )
-from jackpy.ui.render.instancing import normal_matrices, segment_models
-from jackpy.ui.render.mesh import arrow, cone
+from jackpy.render.instancing import normal_matrices, segment_models
+from jackpy.render.mesh import arrow, cone
 
 W, H = 160, 120
 BG = (0.1, 0.1, 0.1, 1.0)
@@ -283,8 +283,8 @@ def test_unchanged_frames_are_not_redrawn_and_changes_are(renderer):
 
 
 def test_software_gl_draws_without_msaa_and_refines_a_still_frame(egl_context):
-    from jackpy.ui.render import Renderer
-    from jackpy.ui.render.renderer import default_samples, is_software_gl
+    from jackpy.render import Renderer
+    from jackpy.render.renderer import default_samples, is_software_gl
 
     r = Renderer(egl_context, (W, H))  # automatic, as the window makes it
     try:
@@ -316,7 +316,7 @@ def test_software_gl_draws_without_msaa_and_refines_a_still_frame(egl_context):
 def test_msaa_setting_follows_the_gl_renderer_string():
     from types import SimpleNamespace
 
-    from jackpy.ui.render.renderer import default_samples, is_software_gl
+    from jackpy.render.renderer import default_samples, is_software_gl
 
     def ctx(name):
         return SimpleNamespace(info={"GL_RENDERER": name}, max_samples=8)
@@ -359,7 +359,7 @@ def test_cad_display_copy_keeps_to_the_renderers_triangle_budget():
 
 
 def test_crease_normals_split_sharp_edges_and_keep_smooth_ones():
-    from jackpy.ui.render.mesh import Mesh, crease_normals
+    from jackpy.render.mesh import Mesh, crease_normals
 
     # a cube: 8 shared corners, every edge a 90 degree crease -> 24 vertices with face normals
     import trimesh

@@ -13,8 +13,8 @@ from typing import Sequence
 
 import numpy as np
 
-from jackpy.ui.render.mesh import Mesh, arrow, cylinder, uv_sphere
-from jackpy.ui.render.scene import Color, DrawItem, GoalMarker, Scene, Spheres, Sticks, Triad
+from jackpy.render.mesh import Mesh, arrow, cylinder, uv_sphere
+from jackpy.render.scene import Color, DrawItem, GoalMarker, Scene, Spheres, Sticks, Triad
 
 SPHERE = "jackpy:sphere"
 CYLINDER = "jackpy:cylinder"

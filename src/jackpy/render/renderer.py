@@ -26,8 +26,8 @@ from pathlib import Path
 import moderngl
 import numpy as np
 
-from jackpy.ui.render import shaders
-from jackpy.ui.render.instancing import (
+from jackpy.render import shaders
+from jackpy.render.instancing import (
     BUILTIN_MESHES,
     INSTANCE_ATTRIBUTES,
     INSTANCE_DTYPE,
@@ -39,9 +39,9 @@ from jackpy.ui.render.instancing import (
     item_batches,
     rgba,
 )
-from jackpy.ui.render.image import write_png
-from jackpy.ui.render.mesh import Mesh
-from jackpy.ui.render.scene import Grid, Lines, Scene
+from jackpy.render.image import write_png
+from jackpy.render.mesh import Mesh
+from jackpy.render.scene import Grid, Lines, Scene
 
 KEY_LIGHT_DIRECTION = np.array([-0.45, 0.8, 0.55]) / np.linalg.norm([-0.45, 0.8, 0.55])
 """Direction towards the key light in world (front-left, above, for a figure facing +z)."""

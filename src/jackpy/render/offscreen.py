@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import moderngl
 
-from jackpy.ui.render.renderer import Renderer
+from jackpy.render.renderer import Renderer
 
 
 def create_egl_context() -> moderngl.Context:
@@ -20,7 +20,7 @@ def offscreen_renderer(width: int, height: int, samples: int | None = 4,
     """A :class:`Renderer` of ``width`` x ``height`` pixels on a new (or the given) EGL context.
 
     Pictures (screenshots, reports) default to 4x MSAA whatever the rasteriser; ``samples=None``
-    chooses as the window does (:func:`~jackpy.ui.render.renderer.default_samples`).
+    chooses as the window does (:func:`~jackpy.render.renderer.default_samples`).
     """
     return Renderer(ctx if ctx is not None else create_egl_context(), (width, height), samples)
 
