@@ -77,6 +77,8 @@ STANCE_SPEED = 0.3
 STANCE_MIN = 0.1
 #: solver iterations per pass and frame (warm-started from the last frame)
 ITERATIONS = 15
+#: at most this many leg solves per frame, the root shifted onto the planted feet between them
+ROOT_ROUNDS = 4
 
 
 @dataclass
@@ -276,7 +278,7 @@ class Retargeter:
         # legs: toe (ball) and ankle positions, knees hinted; the root (pelvis) is placed directly
         self.legs = Problem(figure)
         for side in SIDES:
-            self.goals[f"{side}_ball"] = self.legs.add(Position(site(f"{side}_ball"), np.zeros(3), weight=10.0), 0)
+            self.goals[f"{side}_ball"] = self.legs.add(Position(site(f"{side}_ball"), np.zeros(3), weight=100.0), 0)
             self.goals[f"{side}_ankle"] = self.legs.add(Position(site(f"{side}_ankle"), np.zeros(3), weight=1.0), 0)
             self.goals[f"{side}_knee"] = self.legs.add(Position(site(f"{side}_knee"), np.zeros(3), weight=0.05), 0)
         self.legs.lock(*sorted(set(figure.joints) - leg_joints), *sorted(groups))
@@ -315,7 +317,7 @@ class Retargeter:
         g["chest"].target = tg.chest_rot[i].copy()
         g["head"].target = tg.head_rot[i].copy()
         solve(self.trunk, max_iterations=ITERATIONS, tol_position=2e-4, tol_angle=0.5)
-        for _ in range(2):
+        for _ in range(ROOT_ROUNDS):
             solve(self.legs, max_iterations=ITERATIONS, tol_position=2e-4, tol_angle=0.5)
             if not planted:
                 break
