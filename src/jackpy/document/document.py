@@ -57,6 +57,8 @@ class DocumentState:
     goals: list[GoalEntry]
     figures: dict[str, Figure] | None = None
     behaviors: dict[str, dict[str, tuple[bool, object]]] = field(default_factory=dict)
+    timeline: dict | None = None
+    """The timeline's contents (:meth:`Timeline.to_dict`), so timeline edits undo too."""
 
 
 @dataclass
@@ -293,7 +295,8 @@ class Document:
         figures = {n: copy.deepcopy(f) for n, f in self.env.figures.items()} if structural else None
         behaviors = {n: {b.name: (bool(b.enabled), copy.deepcopy(b.params)) for b in loop.behaviors}
                      for n, loop in self.loops.items()}
-        return DocumentState(postures, copy.deepcopy(self.goals), figures, behaviors)
+        timeline = self.timeline.to_dict() if self.timeline is not None else None
+        return DocumentState(postures, copy.deepcopy(self.goals), figures, behaviors, timeline)
 
     def restore(self, snap: DocumentState) -> None:
         """Put back a captured state exactly (no solve follows)."""
@@ -310,6 +313,8 @@ class Document:
                 fig.q = q.copy()
                 fig.location = loc.copy()
         self.goals = copy.deepcopy(snap.goals)
+        if snap.timeline is not None and self.timeline is not None:
+            self.timeline.load_dict(snap.timeline)  # in place: views of the timeline keep it
         self.needs_solve = False
         self.dirty = True
         if snap.figures is not None:

@@ -138,6 +138,13 @@ class Timeline:
                     raise ValueError(f"{part} motions of {fig} may not overlap: [{a.t0:g}, {a.t1:g}] s and "
                                      f"[{b.t0:g}, {b.t1:g}] s (a {part} motion uses no constraint to blend)")
 
+    def load_dict(self, d: dict[str, Any]) -> None:
+        """Replace the contents with :meth:`to_dict` data, in place (undo keeps this object)."""
+        other = Timeline.from_dict(d)
+        self.motions, self.timed, self.tracks = other.motions, other.timed, other.tracks
+        self.cast, self.explicit_duration, self.span = other.cast, other.explicit_duration, other.span
+        self._last_t = None
+
     # ----- running ----------------------------------------------------------------------------------
     def items(self) -> list[Motion | TimedBehavior]:
         """Motions then timed behaviors, each with a ``run`` dict holding its phase."""
