@@ -11,19 +11,21 @@ from jackpy.peabody.model import Figure
 
 
 def figure_differences(a: Figure, b: Figure, tol: float = 1e-9,
-                       dirs: tuple[str | os.PathLike[str], str | os.PathLike[str]] | None = None) -> list[str]:
+                       dirs: tuple[str | os.PathLike[str], str | os.PathLike[str]] | None = None,
+                       rtol: float = 0.0) -> list[str]:
     """What differs between two figures, one line per difference (empty when equal).
 
     Compares names, root, location, segments (psurf file and transform, attribute, mass, com,
     inertia, sites), joints (connection, DOF kinds, axes, limits, displacement) and groups (joints,
     angles, driver kind and parameters, limits) and the human marker. Numbers agree within ``tol`` (metres, radians). With ``dirs`` the psurf
-    file names are compared as paths resolved against ``dirs[0]`` and ``dirs[1]``.
+    file names are compared as paths resolved against ``dirs[0]`` and ``dirs[1]``; ``rtol`` adds a
+    relative tolerance (for figures with very large numbers).
     """
     out: list[str] = []
 
     def close(what: str, x: object, y: object) -> None:
         xa, ya = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
-        if xa.shape != ya.shape or not np.allclose(xa, ya, atol=tol, rtol=0):
+        if xa.shape != ya.shape or not np.allclose(xa, ya, atol=tol, rtol=rtol):
             out.append(f"{what}: {xa.tolist()} != {ya.tolist()}")
 
     def same(what: str, x: object, y: object) -> None:

@@ -50,7 +50,7 @@ _Value = tuple[float, int, int]
 _UNITS = frozenset([*LENGTH_UNITS, *ANGLE_UNITS])
 _ALL_UNITS = ", ".join([*LENGTH_UNITS, *ANGLE_UNITS])
 _PRIMS = "a transform (trans, scale, rotx, roty, rotz, rot, matrix)"
-#: largest entry of a composed transform's 3x3 part, and of its translation in cm: the writer's
+#: largest entry (5e11) of a composed transform's 3x3 part, and of its translation in cm: the writer's
 #: ``scale``, ``rot``, ``trans`` or ``matrix`` form of it then stays within MAX_MAGNITUDE
 _MAX_LINEAR = MAX_MAGNITUDE / 2
 _BOUNDS = np.full((4, 4), _MAX_LINEAR)
@@ -196,8 +196,8 @@ class _Parser:
                 break
         m = compose(prims)
         if not (np.abs(m) <= _BOUNDS).all():
-            raise ParseError(f"transform out of range (entries at most {_MAX_LINEAR:g}, translations at most "
-                             f"{_MAX_LINEAR:g} cm)", self.file, *self.ts.position(first))
+            raise ParseError("transform out of range (entries at most 5e11, translations at most 5e11 cm)",
+                             self.file, *self.ts.position(first))
         return prims
 
     def siteref(self) -> tuple[str, str]:
