@@ -34,7 +34,7 @@ def test_arm_figure_reach_equals_full_figure_reach(hand: str) -> None:
         mine = reach(arm, p, hand)
         assert mine.reached == full.reached
         if not full.reached:
-            assert mine.shortfall == pytest.approx(full.shortfall, abs=1e-5)
+            assert mine.shortfall == pytest.approx(full.shortfall, abs=1e-4)  # 0.1 mm
         apply_to_figure(arm, fig)  # the reach posture on the full figure puts the hand where the arm's is
         assert np.allclose(fig.site_world(h.segment, h.site), arm.site_world(h.segment, h.site), atol=1e-9)
         neutral.apply(fig)

@@ -25,7 +25,7 @@ ARM_GROUPS = ("shoulder_complex", "forearm")
 ANCHOR = "t1"
 #: the IK's step rule: the book's projected BFGS. On arm targets out of reach the default bounded
 #: Gauss-Newton step runs to the iteration limit (300) where BFGS stops after 40-80 iterations at
-#: the same shortfall (to the 0.01 mm), so a sweep uses BFGS
+#: the same shortfall (to 0.1 mm), so a sweep uses BFGS
 STEP = "bfgs"
 
 
