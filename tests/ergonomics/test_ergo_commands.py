@@ -81,6 +81,7 @@ def test_ergo_every_frame_of_a_motion(session, tmp_path, capsys):
     motion_file.save(mf, path)
     out = tmp_path / "frames"
     assert main(["ergo", str(session), "--motion", str(path), "--method", "rula,reba", "-o", str(out)]) == 0
+    assert capsys.readouterr().out.startswith("wrote ")
     rows = list(csv.DictReader((out / "frames.csv").open()))
     assert [int(r["frame"]) for r in rows] == [0, 1, 2, 3]
     assert [float(r["time"]) for r in rows] == [0.0, 0.5, 1.0, 1.5]
