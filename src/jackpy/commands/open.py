@@ -10,6 +10,8 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("scene", nargs="?", default=None, help="scene file (.env or .fig) to open")
     p.add_argument("--frames", type=int, default=None, metavar="N",
                    help="draw N frames and exit (a smoke test of the window)")
+    p.add_argument("--motion", default=None, metavar="MOTION",
+                   help="motion file (NAME.motion.json) to load into the timeline (see docs/motion.md)")
     p.add_argument("--birds", type=int, default=4, metavar="N",
                    help="number of sensor birds on the --flock port (default 4: waist, neck, palms)")
     p.set_defaults(func=run)
@@ -27,6 +29,10 @@ def run(args: argparse.Namespace) -> int:
     app.scene_dir = base
     if args.scene is not None:  # a bad scene is reported before any window opens
         session.open_session(app, Path(args.scene))
+    if getattr(args, "motion", None):  # a bad motion file too is reported before the window opens
+        from jackpy.motion.player import load_into
+
+        load_into(app.doc, args.motion)
     window = Window(app, "jackpy")
     try:
         if args.scene is None:

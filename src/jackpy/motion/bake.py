@@ -163,6 +163,17 @@ class Baker:
                 progress(len(self.frames), n)
         return self.frames
 
+    def bake_some(self, budget_s: float) -> bool:
+        """Bake further frames for at most about ``budget_s`` seconds; True when all are baked."""
+        import time
+
+        end = time.perf_counter() + budget_s
+        if self.current != len(self.frames) - 1:
+            self.seek(len(self.frames) - 1 if self.frames else -1)
+        while len(self.frames) < self.n_frames and time.perf_counter() < end:
+            self._step()
+        return len(self.frames) >= self.n_frames
+
     def seek(self, i: int) -> dict[str, Posture] | None:
         """Bring the live figures to frame ``i`` (-1: before frame 0), re-simulating from the nearest
         kept state at or before it (or going on from the current frame when that is nearer)."""
