@@ -137,3 +137,21 @@ def test_hand_checked_worksheet(poser):
                                                     (10.0, True, False, 3), (0.0, False, True, 3)])
 def test_force_load_score(kg, static, shock, score):
     assert load_score(Task(load_kg=kg, static=static, shock=shock)) == score
+
+
+@pytest.mark.parametrize("deg,twist", [(59.0, 1), (61.0, 2), (-61.0, 2)])
+def test_wrist_twist_near_the_end_of_the_range(poser, deg, twist):
+    for k in (1, 2):
+        poser.joint(f"right_forearm_twist_{k}", deg / 2)
+    assert rula(poser.f, side="right").worksheet["wrist_twist"] == twist
+
+
+def test_hand_across_the_midline_adds_to_the_lower_arm(poser):
+    poser.arm("right", 60.0, plane=90.0)
+    poser.elbow("right", 95.0)
+    r = rula(poser.f, side="right")
+    assert r.posture["hand_across_midline_m"] == 0.0 and r.worksheet["lower_arm"] == 1
+    poser.arm("right", 60.0, plane=90.0, twist=60.0)  # rotated inward: the hand crosses the body's midline
+    r = rula(poser.f, side="right")
+    assert r.posture["hand_across_midline_m"] > 0.0
+    assert r.worksheet["lower_arm"] == 2
