@@ -186,7 +186,7 @@ def test_spine_target_and_pelvis_orientation_from_sensors():
     poses["neck"][:3, :3] = ry @ poses["neck"][:3, :3]
     for k in range(1, 6):
         r = drive.step(records(poses, k))
-    assert np.allclose(np.degrees(r.spine), [20.0, 0.0, 0.0], atol=0.5)
+    assert np.allclose(np.degrees(r.spine_target), [20.0, 0.0, 0.0], atol=0.5)
     pel = loop.figure.site_world("pelvis", "centre")[:3, :3]
     angle = np.degrees(np.arccos(np.clip((np.trace(pel.T @ poses["pelvis"][:3, :3]) - 1) / 2, -1, 1)))
     assert angle < 2.0

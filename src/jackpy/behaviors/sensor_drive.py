@@ -66,7 +66,9 @@ class DriveConfig:
     ``beta_rot``); ``pelvis``/``torso``/``hands`` switch each stage; ``pelvis_gain`` and
     ``pelvis_max_shift`` (m per frame) servo the pelvis; ``spine_iterations`` corrections of the
     spine bend; ``place_transmitter``: calibration places the transmitter from the waist sensor
-    (else the configured placement is kept)."""
+    (else the configured placement is kept); ``frame_budget_ms``: bounded work per frame (live
+    driving): the loop's solver iterations and COM passes are cut while frames run over the
+    budget and given back while they run well under it (None: the loop's own settings)."""
 
     sensors: SensorConfig = field(default_factory=default_config)
     smoothing: bool = False
@@ -80,6 +82,7 @@ class DriveConfig:
     pelvis_max_shift: float = 0.05
     spine_iterations: int = 2
     place_transmitter: bool = True
+    frame_budget_ms: float | None = None
 
 
 @dataclass
@@ -89,7 +92,9 @@ class DriveReport:
     ``frame`` counts steps; ``fresh`` the birds with a new sample this frame; ``skipped`` the
     samples that arrived since the last frame but were overwritten before it (latest-value
     semantics); ``targets`` the world 4x4 per part; ``errors`` the distance (m) of each driven site
-    from its target after the solve; ``spine`` the spine target (flexion, lateral, axial, rad);
+    from its target after the solve; ``spine`` the spine angles set (flexion, lateral, axial, rad;
+    the spine group's) so the figure's neck turns against its waist as the neck sensor does
+    against the waist sensor, and ``spine_target`` that turn (same order and units);
     ``arrival`` the host time (``time.perf_counter``) the newest consumed sample arrived, or None
     for samples handed in without times of this clock; ``solved`` the time the solve ended;
     ``step_ms`` the frame's cost; ``loop`` the behavior loop's report (None when not stepped)."""
@@ -105,6 +110,7 @@ class DriveReport:
     step_ms: float
     loop: FrameReport | None
     notes: list[str] = field(default_factory=list)
+    spine_target: tuple[float, float, float] | None = None
 
     @property
     def latency_ms(self) -> float | None:
@@ -177,6 +183,10 @@ class SensorDrive:
         self._seen: dict[int, collections.deque[tuple[float, int]]] = {}
         self._neutral: dict[str, np.ndarray] = {}
         self._spine = np.zeros(3)
+        self._spine_applied = np.zeros(3)
+        self._spine_offset = np.zeros(3)  # last frame's command minus target: the warm start
+        self.budget = (FrameBudget(loop, self.config.frame_budget_ms)
+                       if self.config.frame_budget_ms is not None else None)
 
     # ----- calibration ----------------------------------------------------------------------------
     def reference_poses(self) -> dict[str, np.ndarray]:
@@ -198,6 +208,8 @@ class SensorDrive:
                                      place_transmitter=self.config.place_transmitter)
         self._neutral = {p: r.copy() for p, r in ref.items()}
         self._spine = np.zeros(3)
+        self._spine_applied = np.zeros(3)
+        self._spine_offset = np.zeros(3)
         for b, s in samples.items():
             self._last_seq[b] = s.seq
         if self.smoother is not None:
@@ -263,13 +275,12 @@ class SensorDrive:
             # 1. pelvis: orientation goal, floor position servoed through the balance point
             pel = targets.get("pelvis")
             if cfg.pelvis and pel is not None:
-                fig = loop.figure
                 # where the COM belongs for the pelvis to sit on its target (the body's current
                 # COM-to-pelvis offset kept); the balance point moves towards it, at most
                 # pelvis_max_shift a frame. It is no integral, so nothing winds up while the feet
                 # hold the body back: the point reaches the edge of the feet and a step follows.
-                com = floor(fig.centre_of_mass())
-                err = cfg.pelvis_gain * floor(pel[:3, 3] - fig.site_world(*self.sites["pelvis"])[:3, 3])
+                com = floor(loop.posture()[1])
+                err = cfg.pelvis_gain * floor(pel[:3, 3] - self._site("pelvis")[:3, 3])
                 st = loop.state
                 base = st.com_drag if st.com_drag is not None else st.balance_point
                 want = com + err
@@ -296,13 +307,23 @@ class SensorDrive:
         # 4. COM, stepping and legs: the behaviors and the IK
         report = loop.step()
         self.frames += 1
-        fig = loop.figure
-        errors = {p: float(np.linalg.norm(fig.site_world(*self.sites[p])[:3, 3] - t[:3, 3]))
-                  for p, t in targets.items() if p in self.sites}
         solved = time.perf_counter()
+        if self.budget is not None:
+            self.budget.update((solved - t0) * 1e3)
+        errors = {p: float(np.linalg.norm(self._site(p)[:3, 3] - t[:3, 3]))
+                  for p, t in targets.items() if p in self.sites}
         return DriveReport(self.frames, fresh, skipped, targets, errors,
-                           tuple(float(v) for v in self._spine) if cfg.torso else None,
-                           newest if live else None, solved, (solved - t0) * 1e3, report, list(report.notes))
+                           tuple(float(v) for v in self._spine_applied) if cfg.torso else None,
+                           newest if live else None, solved, (solved - t0) * 1e3, report, list(report.notes),
+                           tuple(float(v) for v in self._spine) if cfg.torso else None)
+
+    def _site(self, part: str) -> np.ndarray:
+        """World 4x4 of ``part``'s site, from the loop's cached forward kinematics (one forward
+        pass per posture, shared with the behaviors)."""
+        seg, site = self.sites[part]
+        fk, _ = self.loop.posture()
+        fig = self.loop.figure
+        return fk.segments[fig.kinematics().segment_index[seg]] @ fig.site_location(seg, site)
 
     def _stepping(self) -> bool:
         """Whether the loop's stepping behavior is in the middle of a step."""
@@ -324,20 +345,23 @@ class SensorDrive:
         return np.array([flex, -lateral, twist])
 
     def _bend(self, pelvis: np.ndarray, neck: np.ndarray) -> np.ndarray:
-        """Send the spine target to the spine, then correct it so the figure's neck turns by it."""
+        """Send the spine target to the spine, then correct the command so the figure's neck turns
+        by it; returns the target (the report's ``spine_target``; the angles set are its ``spine``).
+        The command starts from the target plus last frame's correction (a warm start: the
+        correction changes slowly)."""
         loop = self.loop
         want = self._relative(pelvis, neck)
-        theta = want.copy()
-        applied = m.bend_torso(loop, *theta)
+        theta = want + self._spine_offset
+        self._spine_applied = np.asarray(m.bend_torso(loop, *theta), dtype=float)
         for _ in range(self.config.spine_iterations):
-            fig = loop.figure
-            got = self._relative(fig.site_world(*self.sites["pelvis"]), fig.site_world(*self.sites["neck"]))
+            got = self._relative(self._site("pelvis"), self._site("neck"))
             err = want - got
             if float(np.max(np.abs(err))) < 1e-3:
                 break
             theta = theta + err
-            applied = m.bend_torso(loop, *theta)
-        return np.asarray(applied, dtype=float)
+            self._spine_applied = np.asarray(m.bend_torso(loop, *theta), dtype=float)
+        self._spine_offset = theta - want
+        return want
 
     # ----- status -----------------------------------------------------------------------------------
     def status(self) -> DriveStatus:
@@ -361,6 +385,35 @@ class SensorDrive:
             frames=self.frames,
             last_error=(getattr(drv, "last_error", None) if drv is not None else None) or self.last_error,
         )
+
+
+class FrameBudget:
+    """Bounded work per frame for a live drive: adapts ``loop.max_iterations`` (the cap of every
+    pass's solver iterations) and ``loop.max_passes`` (COM passes) to keep a frame's cost (ms)
+    within ``budget_ms``. A frame over the budget cuts the cap in proportion (at least to 1); a
+    frame under 60 % of it gives one iteration back, up to the loop's own settings. Below half
+    the full cap the COM loop runs one pass. The solves warm-start from the last frame's posture,
+    so work cut from one frame continues in the next."""
+
+    def __init__(self, loop: BehaviorLoop, budget_ms: float) -> None:
+        if not budget_ms > 0:
+            raise DeviceError(f"frame budget must be > 0 ms, not {budget_ms:g}")
+        self.loop = loop
+        self.budget_ms = float(budget_ms)
+        self.full_iterations = loop.max_iterations
+        self.full_passes = loop.max_passes
+        self.cap = self.full_iterations
+        self.over = 0  # frames that ran over the budget
+
+    def update(self, frame_ms: float) -> None:
+        """Adjust the loop after a frame that cost ``frame_ms``."""
+        if frame_ms > self.budget_ms:
+            self.over += 1
+            self.cap = max(1, min(self.cap - 1, int(self.cap * self.budget_ms / frame_ms)))
+        elif frame_ms < 0.6 * self.budget_ms:
+            self.cap = min(self.full_iterations, self.cap + 1)
+        self.loop.max_iterations = self.cap
+        self.loop.max_passes = self.full_passes if 2 * self.cap >= self.full_iterations else 1
 
 
 def replay_into(drive: SensorDrive, recording: Recording, speed: float = 0.0, every: int = 1,
@@ -406,4 +459,4 @@ def replay_into(drive: SensorDrive, recording: Recording, speed: float = 0.0, ev
         yield due, drive.step(merged[due], live=False)
 
 
-__all__ = ["DriveConfig", "DriveReport", "DriveStatus", "SensorDrive", "replay_into"]
+__all__ = ["DriveConfig", "DriveReport", "DriveStatus", "FrameBudget", "SensorDrive", "replay_into"]
