@@ -35,6 +35,16 @@ def test_task_widgets_and_a_bad_parameter(poser):
     assert "off the NIOSH frequency table" in state["error"] and kept is r
 
 
+def test_highlight_is_the_worst_part_in_its_level_colour(poser):
+    state = panel.defaults()
+    assert panel.highlight(panel.evaluate(poser.f, state)) == {}  # neutral: every method at its lowest level
+    poser.hinge(65.0)
+    r = panel.evaluate(poser.f, state)
+    colours = panel.highlight(r)
+    assert colours and set(colours) <= set(poser.f.segments)
+    assert len(set(colours.values())) == 1
+
+
 def test_history_records_playback_and_restarts(poser):
     state = panel.defaults()
     r = panel.evaluate(poser.f, state)
@@ -62,7 +72,9 @@ def test_draw_in_a_real_imgui_context(poser):
         io = imgui.get_io()
         io.display_size = (1280, 800)
         io.backend_flags |= imgui.BackendFlags_.renderer_has_textures.value
-        app = SimpleNamespace(figure_of_interest=lambda: poser.f, doc=SimpleNamespace(time=0.0))
+        app = SimpleNamespace(figure_of_interest=lambda: poser.f, doc=SimpleNamespace(time=0.0),
+                              analysis=SimpleNamespace(highlight_colours={}))
+        poser.hinge(45.0)
         ui = UiState()
         ui.open_panels[panel.TITLE] = True
         for t in (0.0, 0.1, 0.2):
@@ -72,6 +84,12 @@ def test_draw_in_a_real_imgui_context(poser):
             imgui.render()
         state = ui.panel_state(panel.TITLE)
         assert len(state["history"]) == 3 and set(state["results"]) == {"rula", "reba", "lowback"}
+        assert app.analysis.highlight_colours  # the bent trunk's worst part is drawn
+        ui.open_panels[panel.TITLE] = False
+        imgui.new_frame()
+        panel.draw(app, ui)  # closed: clears the highlight
+        imgui.render()
+        assert app.analysis.highlight_colours == {}
     finally:
         implot.destroy_context(plot)
         imgui.destroy_context(ctx)

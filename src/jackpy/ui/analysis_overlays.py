@@ -176,6 +176,8 @@ class AnalysisState(LiveAnalyses):
     reach: PointReach | None = None
     visibility: Visibility | None = None
     report_job: Any = None
+    highlight_colours: dict = field(default_factory=dict)
+    """Segment name -> RGBA drawn over the figure of interest (the Ergonomics panel's worst part)."""
     _main_queue: queue.Queue[Callable[[], None]] = field(default_factory=queue.Queue)
     _uploaded: dict = field(default_factory=dict)
     _eye: Any = None
@@ -214,6 +216,8 @@ class AnalysisState(LiveAnalyses):
             return scene
         if self.torque_colouring and self.strength is not None:
             scene.items = recolour_items(scene.items, fig.name, self.strength.segment_colours, app.view.mesh_key)
+        if self.highlight_colours:
+            scene.items = recolour_items(scene.items, fig.name, self.highlight_colours, app.view.mesh_key)
         if self.clearance_on and self.colliding:
             scene.items = recolour_items(scene.items, fig.name, {s: COLLISION_COLOUR for s in self.colliding},
                                          app.view.mesh_key)

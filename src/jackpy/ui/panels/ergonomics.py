@@ -1,11 +1,13 @@
 """Ergonomics panel: the chosen assessments of the figure of interest, live while it is posed.
 
 Per method its score in the action level's colour (green lowest level ... red highest), each body
-part's sub-score, the worst contributor and the method's flags; the task parameters are editable;
+part's sub-score, the worst contributor (named, and drawn on the figure in its level's colour through
+``app.analysis.highlight_colours``) and the method's flags; the task parameters are editable;
 during playback (or whenever the document's time moves) the scores are recorded and plotted over
 time (implot). The imgui drawing (:func:`draw`) only calls the functions below, which tests drive
 headless: :func:`task_of` (the task from the widget state), :func:`evaluate` (the assessments, or
-the error a parameter gives) and :func:`record` (the score history).
+the error a parameter gives), :func:`highlight` (the segment colours) and :func:`record` (the score
+history).
 """
 
 from __future__ import annotations
@@ -35,7 +37,7 @@ COUPLINGS = ["good", "fair", "poor", "unacceptable"]
 
 def defaults() -> dict[str, Any]:
     """The panel's widget state on first use."""
-    return {"methods": {"rula": True, "reba": True, "lowback": True}, "load_kg": 0.0, "static": False,
+    return {"methods": {"rula": True, "reba": True, "lowback": True}, "highlight": True, "load_kg": 0.0, "static": False,
             "repeated": False, "shock": False, "side": "worst", "coupling": "good",
             "lift_d_cm": 40.0, "lift_frequency": 1.0, "lift_duration_h": 1.0,
             "history": [], "results": {}, "error": None}
@@ -87,6 +89,24 @@ def record(state: dict[str, Any], t: float, results: dict[str, Assessment]) -> N
         return
     hist.append((t, {n: float(a.score) for n, a in results.items()}))
     del hist[:-HISTORY]
+
+
+def highlight(results: dict[str, Assessment]) -> dict[str, tuple[float, float, float, float]]:
+    """Segment -> RGBA for the figure: the worst body part of the method at the highest share of
+    its action-level range, in that level's colour (nothing when every method is at its lowest)."""
+    from jackpy.ergonomics import methods
+    from jackpy.ergonomics.summary import level_colour, worst_segments
+
+    def share(a: Assessment) -> float:
+        lo, hi = methods()[a.method].levels
+        return 0.0 if a.level is None else (a.level - lo) / max(hi - lo, 1)
+
+    ranked = [a for a in results.values() if share(a) > 0]
+    if not ranked:
+        return {}
+    top = max(ranked, key=share)
+    colour = tuple(level_colour(top)) + (1.0,)
+    return {seg: colour for seg in worst_segments(top)}
 
 
 def series(state: dict[str, Any], name: str) -> tuple[list[float], list[float]]:
@@ -165,6 +185,10 @@ def draw(app: App, ui: UiState) -> None:
     from jackpy.ergonomics.inputs import is_human
 
     state = ui.panel_state(TITLE, defaults())
+    if not ui.open_panels.get(TITLE):  # drawn every frame (always=True) only to clear the highlight
+        if app.analysis.highlight_colours:
+            app.analysis.highlight_colours = {}
+        return
     vp = imgui.get_main_viewport()
     imgui.set_next_window_pos((vp.size.x - 920, 30), imgui.Cond_.first_use_ever)
     imgui.set_next_window_size((310, 560), imgui.Cond_.first_use_ever)
@@ -184,12 +208,14 @@ def draw(app: App, ui: UiState) -> None:
             results = evaluate(fig, state)
             if state["error"]:
                 imgui.text_colored((1.0, 0.4, 0.3, 1.0), state["error"])
+            state["highlight"] = imgui.checkbox("highlight the worst part", state["highlight"])[1]
             for a in results.values():
                 _result_lines(a)
+            app.analysis.highlight_colours = highlight(results) if state["highlight"] else {}
             record(state, float(app.doc.time), results)
             imgui.separator()
             _plot(state)
     imgui.end()
 
 
-PANEL = Panel(TITLE, draw, order=62)
+PANEL = Panel(TITLE, draw, order=62, always=True)
