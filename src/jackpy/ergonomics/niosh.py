@@ -244,7 +244,6 @@ def assess(figure: Figure, task: Task, posture: Posture, fk: FKResult | None = N
         score = comp["CLI"]
     lv, text = level(score)
     origin = measured_origin(posture)
-    worst = None
     o = sheets[0]["origin"]
     mults = {k: o[k] for k in ("HM", "VM", "DM", "AM", "FM", "CM")}
     worst = min(mults, key=lambda k: mults[k])
