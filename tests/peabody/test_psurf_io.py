@@ -74,3 +74,29 @@ def test_unknown_and_broken_mesh_files(tmp_path: Path) -> None:
         load_mesh(tmp_path / "b.glb")
     with pytest.raises(FileNotFoundError):
         load_mesh(tmp_path / "c.stl")
+
+
+# ----- issue 22 item 8: silent bad geometry is refused with file:line ---------------------------
+@pytest.mark.parametrize("text, where, message", [
+    ("v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n", "2:3", "not a finite number"),
+    ("v 0 0 0\nv 1e308 0 0\nv 0 1 0\nf 1 2 3\n", "2:3", "not a finite number of at most 1e12"),
+    ("v 0 0 0\nv 1 0 0\nv 0 -1e308 0\nf 1 2 3\n", "3:5", "not a finite number"),
+    ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n", "4:3", "face refers to vertex '0'"),
+    ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n", "4:7", "face refers to vertex '4'"),
+    ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/1 2/2 -4/3\n", "4:11", "face refers to vertex '-4'"),
+])
+def test_obj_psurf_with_bad_vertices_or_faces_is_refused_at_its_line(tmp_path: Path, text: str, where: str,
+                                                                     message: str) -> None:
+    path = tmp_path / "part.obj"
+    path.write_text(text)
+    with pytest.raises(ParseError) as info:
+        load_mesh(path)
+    assert str(info.value).startswith(f"{path}:{where}: ") and message in str(info.value)
+
+
+def test_pss_with_huge_coordinates_is_refused(tmp_path: Path) -> None:
+    with pytest.raises(ParseError, match=r"p\.pss:2:3: coordinate 1e308 out of range"):
+        parse_psurf("v 0 0 0\nv 1e308 0 0\n", "p.pss")
+    ok = tmp_path / "ok.obj"
+    ok.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\n")
+    np.testing.assert_allclose(load_mesh(ok).vertices[1], [0.01, 0, 0])  # (OBJ psurfs are cm)

@@ -194,3 +194,28 @@ def test_decimate_keeps_valid_indices():
     from jackpy.peabody import Mesh
     out = decimate(Mesh(m.vertices, m.faces), 12)
     assert out.faces.max() < len(out.vertices) and len(out.faces) <= 12
+
+
+@pytest.mark.parametrize("text, where, message", [
+    ("v 0 0 0\nv 1e308 0 0\nv 0 1 0\nf 1 2 3\n", "2:3", "not a finite number"),
+    ("v 0 0 0\nv -1e308 0 0\nv 0 1 0\nf 1 2 3\n", "2:3", "not a finite number"),
+    ("v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n", "2:3", "not a finite number"),
+    ("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n", "4:3", "face refers to vertex '0'"),
+])
+def test_obj_with_huge_or_nan_coordinates_or_face_zero_is_refused_at_its_line(tmp_path, text, where, message):
+    path = tmp_path / "part.obj"
+    path.write_text(text)
+    with pytest.raises(ImportCADError) as info:
+        import_cad(path, units="mm")
+    assert str(info.value).startswith(f"{path}:{where}: ") and message in str(info.value)
+
+
+def test_bad_step_says_what_is_wrong_without_noise(tmp_path, capfd):
+    if not _available("step"):
+        pytest.skip("STEP needs cascadio")
+    bad = tmp_path / "bad.step"
+    bad.write_text("ISO-10303-21;\nHEADER;\nENDSEC;\nDATA;\n#1=NONSENSE(;\nENDSEC;\nEND-ISO-10303-21;\n")
+    with pytest.raises(ImportCADError, match=r"bad\.step: cannot read STEP file: OpenCascade found no shapes"):
+        import_cad(bad)
+    out, err = capfd.readouterr()
+    assert out == "" and err == "" and "converted.glb" not in out + err

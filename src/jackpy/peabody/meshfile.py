@@ -34,7 +34,7 @@ import numpy as np
 
 from jackpy.errors import ImportCADError
 from jackpy.peabody.geometry import Mesh
-from jackpy.peabody.lexer import MAX_MAGNITUDE
+from jackpy.peabody.lexer import MAX_MAGNITUDE, MAX_TEXT
 from jackpy.peabody.paths import MAX_MESH_BYTES, regular_file_size
 
 #: largest unpacked content of a zip container (3MF), bytes, and largest unpack ratio
@@ -81,7 +81,7 @@ def read_mesh_file(path: str | os.PathLike[str], kind: str, limit: int = MAX_MES
     if faces.ndim != 2 or faces.shape[1] != 3 or len(faces) == 0:
         raise ImportCADError(f"{p}: no triangles found in the {kind.upper()} file")
     if not np.all(np.isfinite(vertices)) or np.abs(vertices).max() > MAX_MAGNITUDE:
-        raise ImportCADError(f"{p}: vertex coordinates are not finite numbers of at most {MAX_MAGNITUDE:g}")
+        raise ImportCADError(f"{p}: vertex coordinates are not finite numbers of at most {MAX_TEXT}")
     if faces.min() < 0 or faces.max() >= len(vertices):
         raise ImportCADError(f"{p}: a face refers to a vertex that does not exist")
     return Mesh(vertices * scale, faces)
@@ -97,11 +97,16 @@ def _load_trimesh(p: Path, kind: str) -> tuple[np.ndarray, np.ndarray]:
         raise
     except Exception as exc:  # trimesh and its readers raise anything on malformed input
         raise ImportCADError(f"{p}: cannot read {kind.upper()} file: {_one_line(exc)}") from None
-    vertices = np.asarray(getattr(loaded, "vertices", np.zeros((0, 3))), dtype=float).reshape(-1, 3)
-    faces = np.asarray(getattr(loaded, "faces", np.zeros((0, 3))))
+    try:
+        vertices = np.asarray(getattr(loaded, "vertices", np.zeros((0, 3))), dtype=float)
+        faces = np.asarray(getattr(loaded, "faces", np.zeros((0, 3))))
+    except (TypeError, ValueError) as exc:
+        raise ImportCADError(f"{p}: cannot read {kind.upper()} file: {_one_line(exc)}") from None
+    if vertices.size and (vertices.ndim != 2 or vertices.shape[1] != 3):
+        raise ImportCADError(f"{p}: the {kind.upper()} file's vertices are not 3-D points")
     if faces.size and not np.issubdtype(faces.dtype, np.integer):
         raise ImportCADError(f"{p}: face indices are not integers")
-    return vertices, faces.astype(np.int64).reshape(-1, 3) if faces.size else np.zeros((0, 3), np.int64)
+    return vertices.reshape(-1, 3), faces.astype(np.int64) if faces.size else np.zeros((0, 3), np.int64)
 
 
 def _load_step(p: Path) -> tuple[np.ndarray, np.ndarray]:

@@ -22,7 +22,7 @@ import numpy as np
 from jackpy.atomic import atomic_write_text
 from jackpy.errors import ImportCADError, ParseError
 from jackpy.peabody.geometry import Mesh
-from jackpy.peabody.lexer import MAX_MAGNITUDE
+from jackpy.peabody.lexer import MAX_MAGNITUDE, MAX_TEXT
 from jackpy.peabody.notation import CM, fmt
 from jackpy.peabody.paths import MAX_MESH_BYTES, read_limited
 
@@ -65,7 +65,7 @@ def parse_psurf(text: str, filename: str = "<string>") -> Mesh:
                 if not np.isfinite(value):
                     raise ParseError(f"expected a coordinate (cm), found {word[:40]!r}", filename, lineno, col)
                 if abs(value) > MAX_MAGNITUDE:
-                    raise ParseError(f"coordinate {word[:40]} out of range (magnitude at most {MAX_MAGNITUDE:g} cm)",
+                    raise ParseError(f"coordinate {word[:40]} out of range (magnitude at most {MAX_TEXT} cm)",
                                      filename, lineno, col)
                 xyz.append(value * CM)
             vertices.append((xyz[0], xyz[1], xyz[2]))
@@ -138,7 +138,7 @@ def check_obj_text(text: str, filename: str) -> None:
                     value = float("nan")
                 if not (np.isfinite(value) and abs(value) <= MAX_MAGNITUDE):
                     raise ParseError(f"vertex coordinate {word[:40]!r} is not a finite number of at most "
-                                     f"{MAX_MAGNITUDE:g}", filename, lineno, pos + 1)
+                                     f"{MAX_TEXT}", filename, lineno, pos + 1)
                 pos += len(word)
         elif stripped.startswith("f ") or stripped.startswith("f\t"):
             pos = 0
