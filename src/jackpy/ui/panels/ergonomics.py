@@ -64,17 +64,25 @@ def task_of(state: dict[str, Any]):
 
 
 def evaluate(figure: Figure, state: dict[str, Any]) -> dict[str, Assessment]:
-    """Run the chosen methods on ``figure``'s posture; a bad parameter leaves the previous results
-    and puts its message in ``state["error"]``."""
-    from jackpy.ergonomics import assess
+    """Run the chosen methods on ``figure``'s posture (one forward pass and one measurement for all);
+    a method whose parameters are bad is left out and its message put in ``state["error"]``."""
+    from jackpy.ergonomics import measure, method
     from jackpy.errors import JackpyError
 
+    errors, results = [], {}
     try:
-        results = assess(figure, chosen(state), task_of(state))
+        task = task_of(state)
     except JackpyError as exc:
         state["error"] = str(exc)
         return state["results"]
-    state["error"] = None
+    fk = figure.kinematics().forward(figure.q, figure.location)
+    posture = measure(figure, fk)
+    for name in chosen(state):
+        try:
+            results[name] = method(name).assess(figure, task, posture, fk)
+        except JackpyError as exc:
+            errors.append(f"{name}: {exc}")
+    state["error"] = "; ".join(errors) or None
     state["results"] = results
     return results
 
