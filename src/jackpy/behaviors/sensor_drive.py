@@ -67,8 +67,8 @@ class DriveConfig:
     ``pelvis_max_shift`` (m per frame) servo the pelvis; ``spine_iterations`` corrections of the
     spine bend; ``place_transmitter``: calibration places the transmitter from the waist sensor
     (else the configured placement is kept); ``frame_budget_ms``: bounded work per frame (live
-    driving): the loop's solver iterations and COM passes are cut while frames run over the
-    budget and given back while they run well under it (None: the loop's own settings)."""
+    driving, CPU ms; :class:`FrameBudget`): the loop's solver iterations are cut while frames run
+    over the budget and given back while they run well under it (None: the loop's own settings)."""
 
     sensors: SensorConfig = field(default_factory=default_config)
     smoothing: bool = False
@@ -253,6 +253,7 @@ class SensorDrive:
         stepped (the report says so). ``live`` tells whether sample times are this process's
         ``time.perf_counter`` (default: when read from the source)."""
         t0 = time.perf_counter()
+        cpu0 = time.thread_time()
         live = (samples is None) if live is None else live
         try:
             samples = self._samples(samples)
@@ -308,8 +309,8 @@ class SensorDrive:
         report = loop.step()
         self.frames += 1
         solved = time.perf_counter()
-        if self.budget is not None:
-            self.budget.update((solved - t0) * 1e3)
+        if self.budget is not None:  # the work of this thread, not the time others took the CPU
+            self.budget.update((time.thread_time() - cpu0) * 1e3)
         errors = {p: float(np.linalg.norm(self._site(p)[:3, 3] - t[:3, 3]))
                   for p, t in targets.items() if p in self.sites}
         return DriveReport(self.frames, fresh, skipped, targets, errors,
@@ -389,31 +390,34 @@ class SensorDrive:
 
 class FrameBudget:
     """Bounded work per frame for a live drive: adapts ``loop.max_iterations`` (the cap of every
-    pass's solver iterations) and ``loop.max_passes`` (COM passes) to keep a frame's cost (ms)
-    within ``budget_ms``. A frame over the budget cuts the cap in proportion (at least to 1); a
-    frame under 60 % of it gives one iteration back, up to the loop's own settings. Below half
-    the full cap the COM loop runs one pass. The solves warm-start from the last frame's posture,
-    so work cut from one frame continues in the next."""
+    pass's solver iterations) to keep a frame's work within ``budget_ms`` of CPU time (the drive
+    thread's: on an idle machine that is the frame's wall time; on a loaded one, time the CPU
+    spent elsewhere is no reason to cut iterations). A frame over the budget cuts the cap in proportion, never below
+    ``min_iterations`` (so the solves still converge over a few frames when the budget cannot be
+    met: below that the cost is the behaviors', not the iterations'); a frame under 60 % of it
+    gives one iteration back, up to the loop's own settings. The COM loop keeps its passes (with
+    one pass the arms' pull on the COM is never settled, so no frame's goals would hold and every
+    frame would solve). The solves warm-start from the last frame's posture, so work cut from one
+    frame continues in the next."""
 
-    def __init__(self, loop: BehaviorLoop, budget_ms: float) -> None:
+    def __init__(self, loop: BehaviorLoop, budget_ms: float, min_iterations: int = 3) -> None:
         if not budget_ms > 0:
             raise DeviceError(f"frame budget must be > 0 ms, not {budget_ms:g}")
         self.loop = loop
         self.budget_ms = float(budget_ms)
+        self.min_iterations = max(1, min(int(min_iterations), loop.max_iterations))
         self.full_iterations = loop.max_iterations
-        self.full_passes = loop.max_passes
         self.cap = self.full_iterations
         self.over = 0  # frames that ran over the budget
 
     def update(self, frame_ms: float) -> None:
-        """Adjust the loop after a frame that cost ``frame_ms``."""
+        """Adjust the loop after a frame whose work took ``frame_ms`` (CPU ms)."""
         if frame_ms > self.budget_ms:
             self.over += 1
-            self.cap = max(1, min(self.cap - 1, int(self.cap * self.budget_ms / frame_ms)))
+            self.cap = max(self.min_iterations, min(self.cap - 1, int(self.cap * self.budget_ms / frame_ms)))
         elif frame_ms < 0.6 * self.budget_ms:
             self.cap = min(self.full_iterations, self.cap + 1)
         self.loop.max_iterations = self.cap
-        self.loop.max_passes = self.full_passes if 2 * self.cap >= self.full_iterations else 1
 
 
 def replay_into(drive: SensorDrive, recording: Recording, speed: float = 0.0, every: int = 1,
