@@ -1,4 +1,7 @@
-"""Variable-metric (BFGS) minimisation with Rosen/Goldfarb projection onto linear limits (book §3.3).
+"""The IK solver: bounded Gauss-Newton steps for one-level problems (:meth:`_Run.minimise_bounded`,
+many limits settled per step on the quadratic model, see :mod:`.bounded_step` and docs/ik.md), and
+the book's variable-metric (BFGS) minimisation with Rosen/Goldfarb projection onto linear limits
+(§3.3) for priority levels. The rest of this docstring describes the latter.
 
 The variables are the problem's scaled variables ``z`` (see :mod:`.problem`); the limits are the box
 ``lower <= z <= upper`` and the joint groups' rows ``A z <= b``. The method is Goldfarb's (1969)
@@ -38,6 +41,8 @@ C1 = 1e-4  # Armijo constant
 BOUND_TOL = 1e-12
 MU_SCALE = 10.0
 MU_FLOOR = 1e-3
+#: relative potential decrease and largest move (scaled radians) below which an iteration creeps
+CREEP, CREEP_STEP = 1e-9, 1e-8
 #: damping of the bounded Gauss-Newton step: ``lambda = GN_DAMPING_FLOOR + GN_DAMPING * |F|`` (scaled units)
 GN_DAMPING, GN_DAMPING_FLOOR = 0.03, 1e-3
 _EMPTY = np.zeros(0)
@@ -62,9 +67,10 @@ def solve(problem: Problem, *, max_iterations: int = 100, tol_position: float = 
     no evaluation starts after it has passed, and the solve returns its best feasible iterate with
     status ``"time_limit"``. With ``analytic`` a problem that is exactly one 6-D goal on a 7-DOF arm
     chain starts from the closed-form solution (see :mod:`.arm7`). ``step``: ``"bounded"`` (default)
-    solves each level without higher levels to hold by bounded Gauss-Newton steps (many limits per
-    step, :mod:`.bounded_step`); ``"bfgs"`` uses the book's one-limit-at-a-time projected BFGS for
-    every level (the reference). With ``apply`` the result is written into the figure.
+    solves a one-level problem by bounded Gauss-Newton steps (many limits per step,
+    :mod:`.bounded_step`); problems with priority levels, and ``step="bfgs"``, use the book's
+    one-limit-at-a-time projected BFGS (with restoration onto the higher levels). With ``apply``
+    the result is written into the figure.
     """
     if step not in ("bounded", "bfgs"):
         raise ValueError(f"step must be 'bounded' or 'bfgs', not {step!r}")
@@ -88,7 +94,7 @@ def solve(problem: Problem, *, max_iterations: int = 100, tol_position: float = 
             if i:
                 hi = comp.levels[:i]
                 manifold = Manifold(hi, float(sum(ev.potential(k) for k in hi)))
-            if manifold is None and step == "bounded":
+            if step == "bounded" and len(comp.levels) == 1:
                 ev, status = run.minimise_bounded(ev, level, max_iterations - run.iterations)
             else:
                 ev, status = run.minimise(ev, level, manifold, max_iterations - run.iterations)
@@ -100,6 +106,13 @@ def solve(problem: Problem, *, max_iterations: int = 100, tol_position: float = 
     if apply:
         comp.apply(comp.x_of(run.x_base, run.z), run.q_base)
     return result
+
+
+def _creeping(G: float, G_new: float, moved: float) -> bool:
+    """An iteration that no longer makes progress: the potential fell by under ``CREEP`` of itself
+    or the largest variable moved under ``CREEP_STEP`` (scaled units); three in a row end a level
+    as stationary (an unreachable goal is then reported at its closest posture)."""
+    return G - G_new <= CREEP * G + 1e-18 or moved <= CREEP_STEP
 
 
 class _Run:
@@ -276,7 +289,7 @@ class _Run:
                     z_new = z_new.copy()
                     z_new[var] = self.hi[var] if d[var] > 0 else self.lo[var]
                     ev_new.z = z_new
-            small = small + 1 if G - G_new <= 1e-12 * G + 1e-18 else 0
+            small = small + 1 if _creeping(G, G_new, alpha * dmax) else 0
             ev, z, J, G, g = ev_new, z_new, J_new, G_new, g_new
             self.z = z
             if small >= 3:
@@ -328,7 +341,7 @@ class _Run:
             boost = max(1.0, boost / 10.0) if alpha >= 1.0 else boost * 2.0
             F, J = ev_new.levels[level]
             G_new = float(F @ F)
-            small = small + 1 if G - G_new <= 1e-12 * G + 1e-18 else 0
+            small = small + 1 if _creeping(G, G_new, alpha * dmax) else 0
             ev, z, G = ev_new, ev_new.z, G_new
             self.z = z
             if small >= 3:
