@@ -90,3 +90,11 @@ def test_hand_checked_worksheet(poser):
     assert (ws["trunk"], ws["neck"], ws["legs"], ws["table_a"], ws["score_a"]) == (3, 2, 2, 5, 6)
     assert (ws["upper_arm"], ws["lower_arm"], ws["wrist"], ws["table_b"], ws["score_b"]) == (3, 1, 2, 4, 5)
     assert ws["table_c"] == 8 and r.score == 9 and r.level == 3
+
+
+def test_worst_contributor(poser):
+    poser.hinge(65.0)
+    assert reba(poser.f).worst == "trunk"
+    poser.neutral()
+    poser.knees(70.0)
+    assert reba(poser.f).worst == "legs"

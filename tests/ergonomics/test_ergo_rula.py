@@ -155,3 +155,13 @@ def test_hand_across_the_midline_adds_to_the_lower_arm(poser):
     r = rula(poser.f, side="right")
     assert r.posture["hand_across_midline_m"] > 0.0
     assert r.worksheet["lower_arm"] == 2
+
+
+def test_worst_contributor_is_the_part_that_raises_the_score_most(poser):
+    poser.hinge(65.0)  # trunk 4: back to upright would lower the grand score the most
+    r = rula(poser.f)
+    assert r.worst == "trunk"
+    poser.neutral()
+    for side in ("left", "right"):
+        poser.arm(side, 120.0)
+    assert rula(poser.f).worst == "upper_arm"

@@ -4,7 +4,8 @@ Group A (trunk, neck, legs) -> Table A, plus the load/force score = score A; gro
 lower arm, wrist) -> Table B, plus the coupling score = score B; Table C, plus the activity score,
 gives the REBA score 1-15 and its action level 0-4. Adjustments are measured from the posture and
 overridable by ``task.overrides``; with ``task.side == "worst"`` the arm with the higher Table B
-score is reported.
+score is reported. The worst contributor is the part whose return to its lowest score would lower
+Table C most (ties: the part nearest its own top score).
 """
 
 from __future__ import annotations
@@ -64,6 +65,18 @@ def action_level(score: int) -> tuple[int, str, str]:
     return C.REBA_ACTION[-1][1:]
 
 
+#: the highest score of each part (base plus adjustments)
+_TOP = {"trunk": 5, "neck": 3, "legs": 4, "upper_arm": 6, "lower_arm": 2, "wrist": 3}
+
+
+def table_c_of(trunk: int, neck: int, legs: int, upper_arm: int, lower_arm: int, wrist: int, load: int,
+               coupling: int) -> int:
+    """Tables A, B and C for the part scores plus the load and coupling scores."""
+    a = int(C.REBA_TABLE_A[neck - 1, trunk - 1, legs - 1]) + load
+    b = int(C.REBA_TABLE_B[lower_arm - 1, upper_arm - 1, wrist - 1]) + coupling
+    return int(C.REBA_TABLE_C[min(a, 12) - 1, min(b, 12) - 1])
+
+
 def _arm(p: Posture, side: str, task: Task) -> dict[str, Any]:
     a = p.arms[side]
     adj: dict[str, Any] = {}
@@ -118,9 +131,10 @@ def assess(figure: Figure, task: Task, posture: Posture, fk: FKResult | None = N
     level, risk, text = action_level(score)
     if p.trunk_flexion > 120 or p.arms[side].upper_arm_flexion > 180:
         flags.append("posture outside the range REBA's figures show")
-    parts = {"trunk": trunk / 5, "neck": neck / 3, "legs": legs / 4, "upper_arm": arm["upper_arm"] / 6,
-             "lower_arm": arm["lower_arm"] / 2, "wrist": arm["wrist"] / 3}
-    worst = max(parts, key=lambda k: parts[k])
+    scores = {"trunk": trunk, "neck": neck, "legs": legs, "upper_arm": arm["upper_arm"],
+              "lower_arm": arm["lower_arm"], "wrist": arm["wrist"]}
+    drops = {k: table_c - table_c_of(**{**scores, k: 1}, load=load, coupling=coupling) for k in scores}
+    worst = max(scores, key=lambda k: (drops[k], (scores[k] - 1) / (_TOP[k] - 1)))
     ws = {"trunk": trunk, "neck": neck, "legs": legs, "knee_adjustment": knee_add, "table_a": table_a,
           "load_force": load, "score_a": score_a, "side": side, "upper_arm": arm["upper_arm"],
           "lower_arm": arm["lower_arm"], "wrist": arm["wrist"], "table_b": arm["table_b"], "coupling": coupling,

@@ -5,8 +5,9 @@ B; each plus the muscle-use and force/load scores gives scores C and D; Table C 
 score 1-7 and its action level 1-4. Bands and tables: :mod:`jackpy.ergonomics.constants`. Every
 adjustment (shoulder raised, arm abducted, arm supported, working across the midline or out to the
 side, wrist deviated, neck/trunk twisted or side-bent) is measured from the posture and overridable
-by ``task.overrides``; with ``task.side == "worst"`` both arms are scored and the higher score C is
-reported.
+by ``task.overrides``; with ``task.side == "worst"`` both arms are scored and the higher Table A
+score is reported. The worst contributor is the part whose return to its lowest score would lower
+the grand score most (ties: the part nearest its own top score).
 """
 
 from __future__ import annotations
@@ -74,6 +75,18 @@ def action_level(score: int) -> tuple[int, str]:
     return C.RULA_ACTION[-1][1], C.RULA_ACTION[-1][2]
 
 
+#: the highest score of each part (base plus adjustments)
+_TOP = {"upper_arm": 6, "lower_arm": 3, "wrist": 4, "wrist_twist": 2, "neck": 6, "trunk": 6, "legs": 2}
+
+
+def grand_score(upper_arm: int, lower_arm: int, wrist: int, wrist_twist: int, neck: int, trunk: int, legs: int,
+                extra: int) -> int:
+    """Tables A, B and C for the part scores; ``extra`` = muscle use + force/load (added to C and D)."""
+    a = int(C.RULA_TABLE_A[upper_arm - 1, lower_arm - 1, wrist - 1, wrist_twist - 1]) + extra
+    b = int(C.RULA_TABLE_B[neck - 1, trunk - 1, legs - 1]) + extra
+    return int(C.RULA_TABLE_C[min(a, 8) - 1, min(b, 7) - 1])
+
+
 def _arm(p: Posture, side: str, task: Task) -> dict[str, Any]:
     a = p.arms[side]
     adj: dict[str, Any] = {}
@@ -129,9 +142,10 @@ def assess(figure: Figure, task: Task, posture: Posture, fk: FKResult | None = N
         flags.append(f"trunk extended {-p.trunk_flexion:.0f}°: RULA has no extension band; scored 2 (0-20°)")
     if p.arms[side].upper_arm_flexion > 180 or p.trunk_flexion > 120:
         flags.append("posture outside the range RULA's figures show")
-    parts = {"upper_arm": arm["upper_arm"] / 6, "lower_arm": arm["lower_arm"] / 3, "wrist": arm["wrist"] / 4,
-             "neck": neck / 6, "trunk": trunk / 6, "legs": legs / 2}
-    worst = max(parts, key=lambda k: parts[k])
+    scores = {"upper_arm": arm["upper_arm"], "lower_arm": arm["lower_arm"], "wrist": arm["wrist"],
+              "wrist_twist": arm["wrist_twist"], "neck": neck, "trunk": trunk, "legs": legs}
+    drops = {k: grand - grand_score(**{**scores, k: 1}, extra=muscle + force) for k in scores}
+    worst = max(scores, key=lambda k: (drops[k], (scores[k] - 1) / (_TOP[k] - 1)))
     ws = {"side": side, "upper_arm": arm["upper_arm"], "lower_arm": arm["lower_arm"], "wrist": arm["wrist"],
           "wrist_twist": arm["wrist_twist"], "table_a": arm["table_a"], "muscle_use": muscle,
           "force_load": force, "score_c": score_c, "neck": neck, "trunk": trunk, "legs": legs,
