@@ -36,10 +36,6 @@ class FigureError(JackpyError):
     exit_code = 2
 
 
-class SolverError(JackpyError):
-    """An IK problem that cannot be set up (unknown site, empty chain, bad weight...)."""
-
-
 class DeviceError(JackpyError):
     """A device problem: says which port and what the device answered (or that it did not)."""
 

@@ -205,7 +205,11 @@ def _two_states(tmp_path):
     deleted, another body), whose complete save is recorded too."""
     import shutil
 
+    import trimesh
+
     app = posed_app()
+    trimesh.creation.box((0.8, 0.05, 0.5)).export(tmp_path / "desk.stl")
+    assert app.import_cad(tmp_path / "desk.stl")
     work = tmp_path / "work"
     path = work / "s.env"
     session.save_session(app, path)
@@ -213,7 +217,7 @@ def _two_states(tmp_path):
     _FOLDERS[a] = _listing(doc_session.psurf_root(path) / json.loads(
         path.read_text().splitlines()[-1][len(doc_session.MARK):])["psurf_generation"])
     shutil.copytree(work, tmp_path / "A")
-    app.env.figures.pop("chair")
+    app.env.figures.pop("desk")  # a CAD object deleted (the v1 pair's unopenable case)
     app.rescale_figure(app.figure_of_interest().name, "female", 5)
     fig = app.figure_of_interest()
     fig.q = np.clip(fig.q + 0.05, fig.lower, fig.upper)
@@ -279,11 +283,26 @@ def test_a_save_interrupted_at_every_write_and_rename_leaves_a_whole_session(tmp
         if k in (1, total // 2, total - 1, total):
             assert _full_read(path) == got, k
         outcomes.append(got == b)
-    assert outcomes == [False] * (total - 1) + [True]  # only the last rename commits the new session
+    assert outcomes == [False] * total  # up to and including the session file's rename: the old one
+    # a fault after the commit (while removing what is stale) leaves the new session, whole
+    monkeypatch.setattr(doc_session, "remove_leftovers", _fail_after_commit(doc_session.remove_leftovers))
+    _back_to_a(tmp_path)
+    with pytest.raises(RuntimeError, match="after the commit"):
+        session.save_session(app, path, remember=False)
+    assert _on_disk(path) == b and _full_read(path) == b
+    monkeypatch.undo()
     session.save_session(app, path, remember=False)
     assert _on_disk(path) == b
     assert [p for p in tmp_path.rglob("*") if p.name.endswith(".tmp")] == []
     assert len(list(doc_session.psurf_root(path).iterdir())) == 1
+
+
+def _fail_after_commit(real):
+    def remove_leftovers(path, keep=None, legacy_in_use=True):
+        if not legacy_in_use:  # the call after the rename
+            raise RuntimeError("injected after the commit")
+        return real(path, keep, legacy_in_use)
+    return remove_leftovers
 
 
 @pytest.mark.timeout(900)

@@ -53,7 +53,7 @@ def sphere_workspace(radius=0.3, n=24) -> Workspace:
 
 
 def draw(renderer, scene, eye=(0.0, 0.0, 3.0), target=(0.0, 0.0, 0.0)):
-    from jackpy.analysis.offscreen import look_at
+    from jackpy.render.projection import look_at
     from jackpy.ui.camera import OrbitCamera
 
     cam = OrbitCamera(target=np.asarray(target, float), distance=3.0)

@@ -133,7 +133,7 @@ def test_analysis_panel_and_eye_view_in_a_window(request):
         st = app.analysis
         st.strength_live, st.torque_colouring, st.load_kg = True, True, 5.0
         st.clearance_on, st.show_cones, st.resolution = True, True, 12
-        ap._ui["open_all"] = True  # every section drawn
+        win.ui.panel_state("Analysis", ap.DEFAULTS)["open_all"] = True  # every section drawn
         job = ap.start_workspace(app)
         job.join()
         for _ in range(4):
@@ -148,5 +148,5 @@ def test_analysis_panel_and_eye_view_in_a_window(request):
         if shot:
             Image.fromarray(pixels.reshape(700, 1000, 3)[::-1]).save(shot)
     finally:
-        ap._ui["open_all"] = False
+        win.ui.panel_state("Analysis", ap.DEFAULTS)["open_all"] = False
         win.close()

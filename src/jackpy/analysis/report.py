@@ -24,7 +24,7 @@ from typing import Any
 import numpy as np
 
 from jackpy.analysis.clearance import ClearanceChecker
-from jackpy.analysis.offscreen import Body, OffscreenRenderer, look_at, perspective
+from jackpy.render.bodies import Body, BodyRenderer as OffscreenRenderer, look_at, perspective_matrix as perspective
 from jackpy.analysis.parts import figure_parts
 from jackpy.analysis.reach import Posture, point_reach
 from jackpy.analysis.statics import Load, joint_torques

@@ -22,7 +22,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from jackpy.analysis.offscreen import Body, OffscreenRenderer, linear_depth, look_at, perspective
+from jackpy.render.bodies import Body, BodyRenderer
+from jackpy.render.projection import linear_depth, look_at, perspective_matrix
 from jackpy.analysis.parts import figure_parts
 from jackpy.peabody.model import Environment, Figure
 
@@ -51,7 +52,7 @@ class EyeView:
 
     def projection(self, near: float = 0.02, far: float = 50.0) -> np.ndarray:
         """The eye camera's perspective (see the module docstring for the field of view)."""
-        return perspective(EYE_VIEW_FOVY, EYE_VIEW_ASPECT, near, far)
+        return perspective_matrix(EYE_VIEW_FOVY, EYE_VIEW_ASPECT, near, far)
 
     def angle_to(self, point: np.ndarray) -> float:
         """Angle (radians) between the gaze and the line from the eye to ``point``."""
@@ -118,14 +119,14 @@ def _bounding_sphere(bodies: list[Body]) -> tuple[np.ndarray, float]:
     return c, float(np.linalg.norm(pts - c, axis=1).max())
 
 
-def object_visibility(renderer: OffscreenRenderer, eye: np.ndarray, target: list[Body],
+def object_visibility(renderer: BodyRenderer, eye: np.ndarray, target: list[Body],
                       occluders: list[Body], name: str) -> Visibility:
     """Visible fraction of the ``target`` bodies from ``eye`` past ``occluders`` (module docstring)."""
     centre, radius = _bounding_sphere(target)
     d = float(np.linalg.norm(centre - eye))
     fovy = 2 * np.arcsin(min(radius / d, 0.95)) * 1.05 if d > 1e-9 else np.radians(120)
     view = look_at(eye, centre if d > 1e-9 else eye + [0, 0, 1])
-    proj = perspective(min(fovy, np.radians(150)), renderer.size[0] / renderer.size[1], 0.005, d + radius + 1.0)
+    proj = perspective_matrix(min(fovy, np.radians(150)), renderer.size[0] / renderer.size[1], 0.005, d + radius + 1.0)
     alone, _ = renderer.render_ids(target, view, proj)
     mask = alone > 0
     total = int(mask.sum())
@@ -141,7 +142,7 @@ def object_visibility(renderer: OffscreenRenderer, eye: np.ndarray, target: list
     return Visibility(name, float(seen.sum()) / total, dict(sorted(occ.items(), key=lambda kv: -kv[1])), total)
 
 
-def point_visibility(renderer: OffscreenRenderer, eye: np.ndarray, point: np.ndarray,
+def point_visibility(renderer: BodyRenderer, eye: np.ndarray, point: np.ndarray,
                      occluders: list[Body], name: str, radius: float = 0.002, tol: float = 0.01) -> Visibility:
     """Visible fraction of a disc of ``radius`` at ``point`` facing ``eye``; surfaces less than
     ``tol`` (metres) in front of the point do not hide it."""
@@ -150,7 +151,7 @@ def point_visibility(renderer: OffscreenRenderer, eye: np.ndarray, point: np.nda
     view = look_at(eye, point)
     w, h = renderer.size
     half = np.arctan(radius / d)
-    proj = perspective(2 * half * 1.25, w / h, near, far)
+    proj = perspective_matrix(2 * half * 1.25, w / h, near, far)
     ids, depth = renderer.render_ids(occluders, view, proj)
     yy, xx = np.mgrid[0:h, 0:w]
     r_pix = (h / 2) / 1.25

@@ -24,7 +24,7 @@ import numpy as np
 
 from jackpy.errors import FigureError
 from jackpy.peabody.kinematics_jit import forward_kernel
-from jackpy.peabody.transforms import batch_rotations, rigid_inverse
+from jackpy.peabody.transforms import rigid_inverse
 
 if TYPE_CHECKING:
     from jackpy.peabody.model import Figure
@@ -169,7 +169,6 @@ class Kinematics:
         segs = [figure.segments[n] for n in self.segment_names]
         self.mass = np.array([s.mass for s in segs], dtype=float)
         self.com_local = np.array([s.com for s in segs], dtype=float).reshape(nseg, 3)
-        self._eye_slots = np.broadcast_to(np.eye(4), (max(nj, 1) * MAX_JOINT_DOFS, 4, 4))
         self._com_h = np.concatenate([self.com_local, np.ones((nseg, 1))], axis=1)[:, :, None]
         self._moved_f = self.seg_moved_by_dof.T.astype(float)  # (ndof, nseg)
         self._m_moved = self._moved_f @ self.mass  # mass moved by each DOF
@@ -239,17 +238,6 @@ class Kinematics:
         self.use_jit = forward_kernel is not None
 
     # ----- forward -----------------------------------------------------------------------------
-    def dof_matrices(self, q: np.ndarray) -> np.ndarray:
-        """Per-joint DOF transforms (njoints, 3, 4, 4), proximal-first, identity-padded."""
-        m = self._eye_slots.copy()
-        if self.rot_dofs.size:
-            r = self.rot_dofs
-            m[self.dof_slot[r], :3, :3] = batch_rotations(self.dof_axis[r], q[r])
-        if self.trans_dofs.size:
-            t = self.trans_dofs
-            m[self.dof_slot[t], :3, 3] = self.dof_axis[t] * q[t, None]
-        return m.reshape(-1, MAX_JOINT_DOFS, 4, 4)
-
     def forward(self, q: np.ndarray, location: np.ndarray) -> FKResult:
         """World transforms of every segment for displacements ``q`` and root-site ``location``.
 

@@ -14,11 +14,13 @@ import numpy as np
 
 @dataclass(frozen=True)
 class Mesh:
-    """Vertices (N, 3) float32 in m, unit normals (N, 3) float32, triangles (M, 3) uint32."""
+    """Vertices (N, 3) float32 in m, unit normals (N, 3) float32, triangles (M, 3) uint32, and
+    optional per-vertex colours (N, 3) float32 in [0, 1] that multiply the item's colour."""
 
     vertices: np.ndarray
     normals: np.ndarray
     indices: np.ndarray
+    colors: np.ndarray | None = None
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "vertices", np.ascontiguousarray(self.vertices, np.float32).reshape(-1, 3))
@@ -28,6 +30,10 @@ class Mesh:
             raise ValueError(f"normals {self.normals.shape} do not match vertices {self.vertices.shape}")
         if self.indices.size and int(self.indices.max()) >= len(self.vertices):
             raise ValueError("triangle index out of range")
+        if self.colors is not None:
+            object.__setattr__(self, "colors", np.ascontiguousarray(self.colors, np.float32).reshape(-1, 3))
+            if self.colors.shape != self.vertices.shape:
+                raise ValueError(f"colours {self.colors.shape} do not match vertices {self.vertices.shape}")
 
     @classmethod
     def from_triangles(cls, vertices: np.ndarray, indices: np.ndarray, crease_deg: float = 60.0) -> Mesh:

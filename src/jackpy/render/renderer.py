@@ -81,7 +81,8 @@ class _GpuMesh:
 
     def __init__(self, ctx: moderngl.Context, mesh: Mesh) -> None:
         self.ctx = ctx
-        self.vbo = ctx.buffer(np.hstack([mesh.vertices, mesh.normals]).astype(np.float32).tobytes())
+        colors = mesh.colors if mesh.colors is not None else np.ones_like(mesh.vertices)
+        self.vbo = ctx.buffer(np.hstack([mesh.vertices, mesh.normals, colors]).astype(np.float32).tobytes())
         self.ibo = ctx.buffer(mesh.indices.tobytes())
         self.index_count = mesh.indices.size
         lo, hi = mesh.bounds()
@@ -114,7 +115,7 @@ class _GpuMesh:
         if vao is None:
             vao = self.ctx.vertex_array(
                 program,
-                [(self.vbo, "3f 3f", "in_position", "in_normal"),
+                [(self.vbo, "3f 3f 3f", "in_position", "in_normal", "in_vertex_color"),
                  (self.instances, INSTANCE_FORMAT, *INSTANCE_ATTRIBUTES)],
                 index_buffer=self.ibo, index_element_size=4, skip_errors=True,
             )
@@ -199,7 +200,7 @@ class Renderer:
         self._resolve_fbo = ctx.framebuffer([self.color_texture], depth)
         pick_tex = ctx.texture(self.size, 1, dtype="i4")
         pick_tex.filter = (moderngl.NEAREST, moderngl.NEAREST)
-        pick_depth = ctx.depth_renderbuffer(self.size)
+        pick_depth = ctx.depth_texture(self.size)
         self._pick_fbo = ctx.framebuffer([pick_tex], pick_depth)
         self._framebuffers = [self._resolve_fbo, self._pick_fbo, self.color_texture, depth, pick_tex, pick_depth]
         self._frame_key = None
@@ -240,11 +241,6 @@ class Renderer:
     def has_mesh(self, key: str) -> bool:
         """Whether a mesh is cached under ``key``."""
         return key in self._meshes
-
-    def remove_mesh(self, key: str) -> None:
-        """Free the GPU buffers of a cached mesh."""
-        self._meshes.pop(key).release()
-        self._mesh_version += 1
 
     def release(self) -> None:
         """Free every GPU resource of this renderer."""
@@ -438,6 +434,29 @@ class Renderer:
     def save_png(self, path: str | Path) -> None:
         """Write the last rendered image to a PNG file."""
         write_png(path, self.read_pixels())
+
+    def read_ids(self) -> tuple[np.ndarray, np.ndarray]:
+        """(ids, depth) of the whole last frame: per pixel the pick id of the nearest opaque (or
+        pickable transparent) surface, 0 for none, and its depth-buffer value in [0, 1]; row 0 is
+        the top of the image (the ID buffer of visibility analyses, book §5.1.1)."""
+        w, h = self.size
+        if self._last is None:
+            raise ValueError("nothing rendered yet")
+        batches, transparent, view, projection = self._last
+        ctx, fbo = self.ctx, self._pick_fbo
+        fbo.use()
+        fbo.scissor = None
+        fbo.depth_mask = True
+        fbo.clear(0.0, 0.0, 0.0, 0.0, depth=1.0)
+        ctx.enable(moderngl.DEPTH_TEST)
+        ctx.disable(moderngl.BLEND | moderngl.CULL_FACE)
+        ctx.depth_func = "<"
+        self._set_mesh_uniforms(view, projection)
+        self._draw(self._pick_program, batches.opaque)
+        self._draw(self._pick_program, transparent)
+        ids = np.frombuffer(fbo.read(components=1, dtype="i4"), np.int32).reshape(h, w)[::-1]
+        depth = np.frombuffer(fbo.depth_attachment.read(), np.float32).reshape(h, w)[::-1]
+        return ids.astype(np.int64), depth.copy()
 
     def pick(self, x: int, y: int) -> int | None:
         """Pick id of the thing drawn at pixel (x, y) of the last frame (origin top-left), or None.

@@ -11,6 +11,7 @@ uniform mat4 u_view;
 uniform mat4 u_proj;
 in vec3 in_position;
 in vec3 in_normal;
+in vec3 in_vertex_color;
 in mat4 in_model;
 in mat3 in_normal_matrix;
 in vec4 in_color;
@@ -25,7 +26,7 @@ void main() {
     vec4 p = u_view * (in_model * vec4(in_position, 1.0));
     v_position = p.xyz;
     v_normal = mat3(u_view) * (in_normal_matrix * in_normal);
-    v_color = in_color;
+    v_color = vec4(in_color.rgb * in_vertex_color, in_color.a);
     v_highlight = in_highlight;
     v_pick = in_pick;
     gl_Position = u_proj * p;

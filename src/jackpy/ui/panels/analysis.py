@@ -194,7 +194,7 @@ def measure_visibility(app: App, target: str, size: tuple[int, int] = (256, 256)
         object_visibility,
         point_visibility,
     )
-    from jackpy.analysis.offscreen import OffscreenRenderer
+    from jackpy.render.bodies import BodyRenderer as OffscreenRenderer
 
     fig = app.figure_of_interest()
     if fig is None:
@@ -222,7 +222,7 @@ def measure_visibility(app: App, target: str, size: tuple[int, int] = (256, 256)
 
 # ---------------------------------------------------------------------- report
 class MainThreadRenderer:
-    """Stands in for :class:`jackpy.analysis.offscreen.OffscreenRenderer` on a worker thread: each
+    """Stands in for :class:`jackpy.render.bodies.BodyRenderer` on a worker thread: each
     call is posted to the main thread (where the window's context is current) and awaited."""
 
     def __init__(self, state: AnalysisState, ctx, size: tuple[int, int]) -> None:
@@ -236,7 +236,7 @@ class MainThreadRenderer:
         def work() -> None:
             try:
                 if self._r is None and method != "release":
-                    from jackpy.analysis.offscreen import OffscreenRenderer
+                    from jackpy.render.bodies import BodyRenderer as OffscreenRenderer
 
                     self._r = OffscreenRenderer(self.size, ctx=self.ctx)
                 if self._r is not None:
