@@ -13,7 +13,7 @@ from jackpy.cli import main
 
 EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "workplace" / "workplace.json"
 
-pytest.importorskip("jackpy.body.human")
+import jackpy.body.human  # noqa: E402,F401  (a broken import fails, never skips)
 
 
 def test_analyze_with_body_reach_mode(tmp_path, capsys):
