@@ -38,7 +38,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from jackpy.behaviors.base import BehaviorBase, param
-from jackpy.behaviors.feet import replace_foot_goals
+from jackpy.behaviors.feet import FOOT_GOALS, replace_foot_goals
 from jackpy.behaviors.hands import turn_towards
 from jackpy.behaviors.pelvis import feet_yaw, pelvis_yaw
 from jackpy.behaviors.support import convex_hull, floor, signed_distance, wrap
@@ -152,6 +152,15 @@ def point_over_foot(frame: "Frame", side: str, target: np.ndarray, b: np.ndarray
         if moved < 1e-7:
             break
     return p
+
+
+def _below_balance(frame: "Frame", side: str) -> None:
+    """Put the swinging foot's goals one priority level below the COM goal: the weight stays over
+    the stance sole and the foot takes the path the leg can give it from there (issue 19: with the
+    swing foot above the COM, a long step dragged the COM up to 9 cm off the stance foot)."""
+    names = {f"{n} {side}" for n in FOOT_GOALS}
+    below = frame.com_level + 1
+    frame.body[:] = [(g, max(lv, below) if getattr(g, "name", None) in names else lv) for g, lv in frame.body]
 
 
 def _smooth(u: float) -> float:
@@ -313,8 +322,16 @@ class Stepping(BehaviorBase):
                     d = pose[:3, :3] @ now.T
                     angle = float(np.arccos(np.clip((np.trace(d) - 1.0) / 2.0, -1.0, 1.0)))
                     pose[:3, :3] = turn_towards(now, pose[:3, :3], angle / (s.frames - j + 1))[0]
+                if s.k - s.shift > s.frames and s.kind == "balance":
+                    # settling: with the weight held over the stance sole the leg may fall short of
+                    # the planned landing; the foot then comes straight down where it is (a
+                    # shorter step) instead of snapping the body to the far end pose on landing
+                    ball = frame.site(*frame.anatomy.feet[s.side].ball)[:3, 3]
+                    s.end[[0, 2], 3] = ball[[0, 2]]
                 fs.target = pose if j < s.frames else s.end.copy()
                 replace_foot_goals(frame, s.side, hold=True)
+                if s.kind == "balance":  # a pivot (twist) step is short and must turn the foot fully
+                    _below_balance(frame, s.side)
                 goal = s.stance_point
         frame.com_goal = np.array([goal[0], 0.0, goal[1]])
 
