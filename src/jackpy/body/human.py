@@ -158,9 +158,14 @@ def peabody_copy(figure: Figure, psurf_dir: str = "") -> Figure:
 
 def attach_groups(figure: Figure) -> None:
     """Add the spine and shoulder-complex groups to a standard human read from a Peabody file, with
-    group angles recovered exactly from the member displacements the drivers produced."""
+    group angles recovered exactly from the member displacements the drivers produced. Files
+    written now carry the groups themselves (their drivers have registered kinds): then this
+    does nothing."""
     from jackpy.body.shoulder import shoulder_group
     from jackpy.body.spine import SPINE_ANGLES, SPINE_DOFS, spine_group
+
+    if "spine" in figure.groups:
+        return
 
     g = spine_group()
     member = np.concatenate([figure.joint(j).displacement for j in g.joints]).reshape(-1, 3)
