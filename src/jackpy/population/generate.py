@@ -14,8 +14,9 @@ How the overrides move the dimensions measured on the figure (:mod:`jackpy.body.
 **calibrated** per sex: the Jacobian of the measured dimensions with respect to the overrides and to
 the regression-filled secondary dimensions (hand, chest, waist, buttock, foot and head sizes, limb
 and neck girths, biacromial breadth), by finite differences of 1 SD at the mean body, and the mean body solved by
-Newton steps so that its measurements equal the model's means. Overrides are then linear in the
-targets, so a figure measures what its body asks for to within the figure's small nonlinearity.
+Newton steps so that its measurements equal the model's means; and the floor the shoulder tops put
+under the measured bideltoid breadth (a narrow-deltoid body gets narrower acromia, as it must).
+Overrides are then linear in the targets, so a figure measures what its body asks for to within the figure's small nonlinearity.
 Bodies carry their overrides (:class:`Body`): workers build figures from them without calibrating.
 """
 
@@ -60,6 +61,8 @@ ARM = ("upper_arm.length", "forearm.length")
 #: (SASS span, or upper arm + forearm), bideltoid breadth, hip breadth (sitting), foot length
 CONTROLS = ("path", "trunk", "mass", "arm", "bideltoid", "hip", "foot")
 POPULATION = "ansur2"
+#: how far below a body's bideltoid breadth its shoulder tops' floor is kept (m)
+FLOOR_MARGIN = 0.002
 
 
 @dataclass(frozen=True)
@@ -105,9 +108,12 @@ def _sass_sd(sex: str, name: str) -> float:
     return float(v[5] - v[1]) / (2 * 1.6448536)
 
 
-def overrides_for(sex: str, full: Mapping[str, float], u: np.ndarray) -> dict[str, float]:
+def overrides_for(sex: str, full: Mapping[str, float], u: np.ndarray,
+                  floor: tuple[float, float] | None = None) -> dict[str, float]:
     """SASS overrides (SI) for control vector ``u`` (:data:`CONTROLS`) and the secondary dimensions
-    of ``full`` (a :func:`complete` result)."""
+    of ``full`` (a :func:`complete` result). ``floor = (c, k)``: the figure's bideltoid breadth is
+    never less than ``c + k * shoulder.breadth`` (its shoulder tops), so the biacromial breadth is
+    lowered where the bideltoid asked for is below that floor (less ``FLOOR_MARGIN``)."""
     base = _base_spec(sex)
     d = base.dims
     sm = _full_model().sex(sex)
@@ -132,6 +138,9 @@ def overrides_for(sex: str, full: Mapping[str, float], u: np.ndarray) -> dict[st
     hip = "hip.breadth_sitting" if "hip.breadth_sitting" in d else "hip.breadth"
     out["hip.breadth"] = d["hip.breadth"] + float(u[5]) - d[hip]
     out[hip] = float(u[5])
+    if floor is not None and "shoulder.breadth" in out:
+        c, k = floor
+        out["shoulder.breadth"] = min(out["shoulder.breadth"], (float(u[4]) - FLOOR_MARGIN - c) / k)
     return {k: float(v) for k, v in out.items()}
 
 
@@ -168,11 +177,13 @@ def measure_controlled(fig: Figure) -> np.ndarray:
 
 @dataclass(frozen=True)
 class Calibration:
-    """Linear map from a body's controlled targets ``t`` to its controls: ``u = u0 + gain (t - t0)``."""
+    """Linear map from a body's controlled targets ``t`` to its controls: ``u = u0 + gain (t - t0)``;
+    ``floor``: the bideltoid floor ``(c, k)`` of :func:`overrides_for`."""
 
     t0: np.ndarray
     u0: np.ndarray
     gain: np.ndarray
+    floor: tuple[float, float]
 
     def controls(self, t: np.ndarray) -> np.ndarray:
         return self.u0 + self.gain @ (np.asarray(t, dtype=float) - self.t0)
@@ -210,7 +221,18 @@ def calibration(sex: str) -> Calibration:
         full = complete(sex, {k: (t0[j] + (sd[j] if j == i else 0.0)) for j, k in enumerate(CONTROLLED)})
         jac_t.append((_measured(sex, full, u) - m) / sd[i])
     gain = np.linalg.solve(jac_u, np.eye(len(u)) - np.column_stack(jac_t))
-    return Calibration(t0, u, gain)
+    # the shoulder tops' floor under the bideltoid breadth: measured with a vanishing deltoid at two
+    # biacromial breadths
+    narrow = u.copy()
+    narrow[4] = 0.5 * t0[4]
+    floors = []
+    for db in (0.0, 0.02):
+        o = overrides_for(sex, mean_body, narrow)
+        o["shoulder.breadth"] += db
+        floors.append(measure_controlled(figure_from_spec(spec_from_overrides(sex, o), "calibration"))[4])
+    k = (floors[1] - floors[0]) / 0.02
+    c = floors[0] - k * overrides_for(sex, mean_body, narrow)["shoulder.breadth"]
+    return Calibration(t0, u, gain, (float(c), float(k)))
 
 
 def make_body(index: int, sex: str, values: Mapping[str, float], label: str = "mc") -> Body:
@@ -218,6 +240,7 @@ def make_body(index: int, sex: str, values: Mapping[str, float], label: str = "m
     their regression on the given ones), with its calibrated overrides."""
     full = complete(sex, values)
     t = np.array([full[k] for k in CONTROLLED])
-    u = calibration(sex).controls(t)
+    cal = calibration(sex)
+    u = cal.controls(t)
     targets = {k: full[k] for k in CONTROLLED}
-    return Body(index, sex, targets, label, overrides_for(sex, full, u))
+    return Body(index, sex, targets, label, overrides_for(sex, full, u, cal.floor))
