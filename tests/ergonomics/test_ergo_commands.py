@@ -76,7 +76,8 @@ def test_ergo_every_frame_of_a_motion(session, tmp_path, capsys):
     for deg in (10.0, 30.0, 60.0, 100.0):
         arm.set_angles(f, np.radians([deg, 90.0, 0.0]))
         postures.append(Posture.of(f))
-    mf = motion_file.MotionFile(fps=2.0, baked={"worker": motion_file.BakedFigure.from_postures(f, postures)})
+    mf = motion_file.MotionFile(fps=2.0, baked={"worker": motion_file.BakedFigure.from_postures(f, postures,
+                                                                                                human="male:50")})
     path = tmp_path / "raise.motion.json"
     motion_file.save(mf, path)
     out = tmp_path / "frames"
@@ -91,6 +92,10 @@ def test_ergo_every_frame_of_a_motion(session, tmp_path, capsys):
     assert main(["ergo", str(session), "--motion", str(path), "--method", "rula"]) == 0
     table = capsys.readouterr().out.splitlines()
     assert table[0].split()[:3] == ["frame", "time_s", "rula"] and len(table) == 5
+    # on an empty floor: the motion's one figure, made at the motion's size, gives the same scores
+    assert main(["ergo", "-", "--motion", str(path), "--method", "rula", "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
+    assert d["figure"] == "worker" and [r["rula"] for r in d["frames"]] == scores
 
 
 def test_ergo_motion_without_the_figure(session, tmp_path, capsys):

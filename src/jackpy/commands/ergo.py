@@ -9,11 +9,12 @@ import argparse
 def register(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("ergo", help="ergonomic assessments (RULA, REBA, OWAS, NIOSH lifting, L5/S1 low back, "
                                     "percent capable) of a posed figure or of every frame of a motion")
-    p.add_argument("scene", metavar="SCENE", help="a session (.env, the figures as posed) or a workplace scene "
-                                                  "(.json: a standard human standing where it says)")
+    p.add_argument("scene", metavar="SCENE", help="a session (.env, the figures as posed), a workplace scene "
+                                                  "(.json: a standard human standing where it says) or - (a "
+                                                  "standard human on an empty floor)")
     p.add_argument("--figure", default=None, metavar="NAME", help="the figure to assess (default: the only human)")
-    p.add_argument("--human", default="male:50", metavar="SEX:PCT",
-                   help="size of the standard human for a workplace scene (default male:50)")
+    p.add_argument("--human", default=None, metavar="SEX:PCT",
+                   help="size of the standard human for a workplace scene or - (default: the motion's, else male:50)")
     p.add_argument("--method", default="rula,reba", metavar="M[,M...]",
                    help="rula, reba, owas, niosh, lowback, capable, comma separated, or all (default rula,reba)")
     p.add_argument("--task", default=None, metavar="TASK.json", help="task parameters (docs/ergonomics.md)")
@@ -37,7 +38,12 @@ def run(args: argparse.Namespace) -> int:
 
     names = parse_methods(args.method)
     task = load_task(args.task, args.load)
-    figure = figure_from_scene(args.scene, args.figure, args.human)
+    name, human = args.figure, args.human
+    if args.motion is not None and not args.scene.endswith(".env"):  # a made human: the motion's figure
+        from jackpy.ergonomics.frames import baked_human
+
+        name, human = baked_human(args.motion, name, human)
+    figure = figure_from_scene(args.scene, name, human or "male:50")
     if args.motion is None:
         from jackpy.ergonomics import assess
 

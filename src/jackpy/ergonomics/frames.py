@@ -13,6 +13,20 @@ from jackpy.ergonomics.summary import json_ready, value_text
 from jackpy.peabody.model import Figure
 
 
+def baked_human(motion_path: str, name: str | None, human: str | None) -> tuple[str | None, str | None]:
+    """For a human made here (workplace scene or empty floor): the figure name and size to make so
+    the motion's frames apply — with one baked figure, its name and its ``human`` size unless given."""
+    from jackpy.motion import motion_file
+
+    mf = motion_file.load(motion_path)
+    if name is None and len(mf.baked) == 1:
+        name = next(iter(mf.baked))
+    baked = mf.baked.get(name) if name is not None else None
+    if human is None and baked is not None and baked.human:
+        human = baked.human
+    return name, human
+
+
 def per_frame(figure: Figure, motion_path: str, names: list[str], task: Task) -> dict[str, Any]:
     """Score ``names`` at every baked frame of the motion file for ``figure`` (matched by name);
     the figure's own posture is restored afterwards. Returns ``{"figure", "fps", "frames": [{"frame",

@@ -44,20 +44,22 @@ def is_human(figure: Figure) -> bool:
 
 def figure_from_scene(path: str, name: str | None, human: str = "male:50") -> Figure:
     """The figure to assess: from a session (``.env``: the named figure, default the only standard
-    human, as posed) or a workplace scene (``.json``: a standard human of size ``human``
-    (``SEX:PCT``) standing where the scene says, neutral posture)."""
+    human, as posed), a workplace scene (``.json``: a standard human of size ``human`` (``SEX:PCT``)
+    named ``name`` standing where the scene says, neutral posture) or ``-`` (that human on an empty
+    floor at the origin)."""
     p = Path(path)
-    if p.suffix.lower() == ".json":
+    if path == "-" or p.suffix.lower() == ".json":
         from jackpy.analysis.report import parse_figures
         from jackpy.body import make_human
-        from jackpy.scene.workplace import load_workplace, stand_figure
 
-        wp = load_workplace(p)
         sizes = parse_figures(human)
         if len(sizes) != 1:
             raise ErgonomicsError(f"--human: give one size (SEX:PCT), not {human!r}")
         fig = make_human(*sizes[0], name=name)
-        stand_figure(fig, wp.stand)
+        if path != "-":
+            from jackpy.scene.workplace import load_workplace, stand_figure
+
+            stand_figure(fig, load_workplace(p).stand)
         return fig
     import jackpy.body  # noqa: F401  (registers the standard human's joint-group kinds for reading)
     from jackpy.document.session import load_session
