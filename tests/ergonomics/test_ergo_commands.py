@@ -144,3 +144,11 @@ def test_analyze_bad_ergonomic_task_writes_nothing(tmp_path, capsys, task, messa
     assert rc != 0
     assert message in capsys.readouterr().err
     assert not out.exists()
+
+
+def test_example_task_file(capsys):
+    task = EXAMPLE.parents[1] / "ergonomics" / "lift_task.json"
+    assert main(["ergo", str(EXAMPLE), "--method", "niosh,lowback", "--task", str(task), "--json"]) == 0
+    niosh = json.loads(capsys.readouterr().out)["methods"]["niosh"]
+    assert len(niosh["worksheet"]["lifts"]) == 2 and niosh["worksheet"]["CLI"] == niosh["score"]
+    assert niosh["score"] > max(x["LI"] for x in niosh["worksheet"]["lifts"])
