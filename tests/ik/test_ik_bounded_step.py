@@ -131,3 +131,16 @@ def test_shoulder_jacobian_is_analytic_and_matches_finite_differences() -> None:
         if min(abs(np.degrees(th[0]) - 131.4), abs(np.degrees(th[0]) - 130.0)) < 1e-3:
             continue  # a breakpoint of Otani's allocation: one-sided there
         assert np.allclose(d.jacobian(th), d.numerical_jacobian(th, 1e-6), atol=1e-7)
+
+
+def test_compiled_box_step_equals_numpy_reference() -> None:
+    rng = np.random.default_rng(9)
+    for _ in range(40):
+        n, m = int(rng.integers(3, 91)), int(rng.integers(2, 25))
+        J, F, lam = rng.normal(size=(m, n)), rng.normal(size=m) * 3, 10.0 ** rng.uniform(-3, 0)
+        lo, hi = -rng.uniform(0, 0.3, n), rng.uniform(0, 0.3, n)
+        c = J.T @ F
+        a = bounded_step(J, lam, c, lo, hi)
+        b = bounded_step(J, lam, c, lo, hi, compiled=False)
+        assert np.all(a[0] >= lo) and np.all(a[0] <= hi) and np.array_equal(a[1], b[1]) and a[2] == b[2]
+        assert abs(_model(J, lam, c, a[0]) - _model(J, lam, c, b[0])) <= 1e-10 * (1 + abs(_model(J, lam, c, b[0])))

@@ -18,6 +18,8 @@ that row joins the working set, and a row whose multiplier turns negative leaves
 
 from __future__ import annotations
 
+import os
+
 import numpy as np
 
 try:  # numpy.linalg.inv's own kernel, without its per-call checks (the matrix is positive definite)
@@ -65,17 +67,23 @@ def _model(H: _Hessian, c: np.ndarray, d: np.ndarray) -> float:
 def bounded_step(J: np.ndarray, lam: float, c: np.ndarray, lower: np.ndarray, upper: np.ndarray,
                  A: np.ndarray | None = None, r: np.ndarray | None = None, *,
                  held: np.ndarray | None = None, max_iterations: int = 100,
-                 tol: float = 1e-12) -> tuple[np.ndarray, np.ndarray, int]:
+                 tol: float = 1e-12, compiled: bool = True) -> tuple[np.ndarray, np.ndarray, int]:
     """(the minimiser ``d``, the bounds held at it, inner iterations) of the QP above.
 
     Every iterate is feasible. ``held``: a guess of the variables held at a bound (the previous
     step's; those not at a bound are ignored), a warm start of the search. ``tol`` is relative to
-    ``max |c|``: multipliers above ``-tol max|c|`` count as non-negative.
+    ``max |c|``: multipliers above ``-tol max|c|`` count as non-negative. Without rows the search
+    runs as one compiled loop when numba is installed (``compiled=False``: the numpy reference).
     """
     n = c.size
     d = np.zeros(n)
     if n == 0:
         return d, np.zeros(0, dtype=bool), 0
+    if compiled and _box_step_compiled is not None and (A is None or A.shape[0] == 0):
+        h = np.zeros(n, dtype=bool) if held is None else np.array(held, dtype=bool)
+        return _box_step_compiled(np.ascontiguousarray(J, dtype=float), float(lam), np.asarray(c, dtype=float),
+                                  np.asarray(lower, dtype=float), np.asarray(upper, dtype=float), h,
+                                  max_iterations, tol)
     H = _Hessian(J, lam)
     rows_on = A is not None and A.shape[0] > 0
     fixed = upper - lower <= AT_BOUND
@@ -162,3 +170,92 @@ def bounded_step(J: np.ndarray, lam: float, c: np.ndarray, lower: np.ndarray, up
         if over.any():
             d = d * float(np.min(np.where(over, r / np.where(over, Ad, 1.0), 1.0)))
     return d, held, it
+
+
+def _box_step(J, lam, c, lower, upper, held, max_iterations, tol):  # pragma: no cover - compiled
+    """:func:`bounded_step` without rows, as one loop (compiled by numba when it is installed)."""
+    m, n = J.shape
+    d = np.zeros(n)
+    fixed = upper - lower <= AT_BOUND
+    for i in range(n):
+        at_bound = lower[i] >= -AT_BOUND or upper[i] <= AT_BOUND
+        held[i] = fixed[i] or (lower[i] >= -AT_BOUND and c[i] > 0) or (upper[i] <= AT_BOUND and c[i] < 0) \
+            or (held[i] and at_bound)
+    eps = tol * max(np.max(np.abs(c)), 1e-300)
+    on_face = False
+    it = 0
+    while it < max_iterations:
+        it += 1
+        Jd = J @ d
+        grad = J.T @ Jd + lam * d + c
+        q0 = c @ d + 0.5 * (Jd @ Jd + lam * (d @ d))
+        s = np.zeros(n)
+        if not on_face:
+            free = np.nonzero(~held)[0]
+            if free.size:
+                Jf = np.ascontiguousarray(J[:, free])
+                K = Jf @ Jf.T
+                for k in range(m):
+                    K[k, k] += lam
+                gf = grad[free]
+                sf = -(gf - Jf.T @ (np.linalg.solve(K, Jf @ gf))) / lam
+                for k in range(free.size):
+                    s[free[k]] = sf[k]
+        decrease = -(grad @ s)
+        if on_face or decrease <= 1e-15 * (1.0 + abs(q0)) or np.max(np.abs(s)) <= 1e-15:
+            on_face = False
+            wrong = False
+            for i in range(n):
+                if held[i] and not fixed[i]:
+                    at_lo = d[i] <= lower[i] + AT_BOUND
+                    if (at_lo and grad[i] < -eps) or (not at_lo and grad[i] > eps):
+                        held[i] = False
+                        wrong = True
+            if wrong:
+                continue
+            break
+        alpha = 1.0
+        accepted = False
+        for _ in range(20):
+            trial = np.minimum(np.maximum(d + alpha * s, lower), upper)
+            Jt = J @ trial
+            qt = c @ trial + 0.5 * (Jt @ Jt + lam * (trial @ trial))
+            if qt <= q0 + SIGMA * (grad @ (trial - d)):
+                hit = False
+                for i in range(n):
+                    if (trial[i] <= lower[i] + AT_BOUND and s[i] < 0) or (trial[i] >= upper[i] - AT_BOUND and s[i] > 0):
+                        held[i] = True
+                        hit = True
+                on_face = alpha == 1.0 and not hit
+                d = trial
+                accepted = True
+                break
+            alpha *= 0.5
+        if accepted:
+            continue
+        a, var = 1.0, -1
+        for i in range(n):
+            if s[i] > 0:
+                r = (upper[i] - d[i]) / s[i]
+            elif s[i] < 0:
+                r = (lower[i] - d[i]) / s[i]
+            else:
+                continue
+            if r < a:
+                a, var = r, i
+        a = max(a, 0.0)
+        d = np.minimum(np.maximum(d + a * s, lower), upper)
+        if var >= 0:
+            held[var] = True
+            d[var] = upper[var] if s[var] > 0 else lower[var]
+    return d, held, it
+
+
+try:
+    if os.environ.get("JACKPY_NO_JIT"):
+        raise ImportError("disabled by JACKPY_NO_JIT")
+    import numba
+
+    _box_step_compiled = numba.njit(cache=True, nogil=True)(_box_step)
+except ImportError:  # pragma: no cover - numba is optional
+    _box_step_compiled = None
