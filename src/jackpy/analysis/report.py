@@ -361,6 +361,10 @@ def _csv(results: dict[str, Any]) -> str:
     return buf.getvalue()
 
 
+def _records(v: Any) -> bool:
+    return isinstance(v, list) and bool(v) and all(isinstance(x, dict) for x in v)
+
+
 def _ergonomics_html(r: dict[str, Any], pictures: dict[str, bytes]) -> str:
     """The report's ergonomics sections: per method its score, flags, worksheet and posture picture."""
     e = html.escape
@@ -373,9 +377,20 @@ def _ergonomics_html(r: dict[str, Any], pictures: dict[str, bytes]) -> str:
         if f"{t}-ergo-{name}.png" in pictures:
             out.append(f"<img src='{t}-ergo-{name}.png' alt='{e(name)} posture' width='427'>")
         out += [f"<p class='bad'>{e(f)}</p>" for f in a["flags"]]
+        rows = {k: v for k, v in a["worksheet"].items() if not _records(v)}
         out.append("<table><tr><th>worksheet</th><th>value</th></tr>")
-        out += [f"<tr><td>{e(k)}</td><td>{e(value_text(v))}</td></tr>" for k, v in flat(a["worksheet"])]
-        out.append(f"</table><table><tr><th>posture ({e(a['frame'])})</th><th>value</th></tr>")
+        out += [f"<tr><td>{e(k)}</td><td>{e(value_text(v))}</td></tr>" for k, v in flat(rows)]
+        out.append("</table>")
+        for k, v in a["worksheet"].items():  # lists of records (joints, lifts) as tables of their own
+            if _records(v):
+                cols = list(dict.fromkeys(c for r in v for c, _ in flat(r)))
+                out.append(f"<table><tr><th>{e(k)}</th>" + "".join(f"<th>{e(c)}</th>" for c in cols) + "</tr>")
+                for i, r in enumerate(v):
+                    cells = dict(flat(r))
+                    out.append(f"<tr><td>{i + 1}</td>" + "".join(f"<td>{e(value_text(cells.get(c, '')))}</td>"
+                                                                for c in cols) + "</tr>")
+                out.append("</table>")
+        out.append(f"<table><tr><th>posture ({e(a['frame'])})</th><th>value</th></tr>")
         out += [f"<tr><td>{e(k)}</td><td>{e(value_text(v))}</td></tr>" for k, v in flat(a["posture"])]
         out.append("</table>")
     return "\n".join(out)

@@ -15,6 +15,7 @@ def value_text(v: Any) -> str:
     if isinstance(v, float):
         if math.isinf(v):
             return "inf"
+        v = v + 0.0  # no "-0"
         return f"{v:.3g}" if abs(v) < 1000 else f"{v:.0f}"
     if isinstance(v, (list, tuple)):
         return ", ".join(value_text(x) for x in v) or "-"
