@@ -46,3 +46,46 @@ def test_jackpy_open_runs_frames_and_exits(tmp_path):
     done = subprocess.run([sys.executable, "-m", "jackpy", "open", "--frames", "3"], env=env,
                           capture_output=True, text=True, timeout=120)
     assert done.returncode == 0, done.stderr
+
+
+def test_quit_with_unsaved_changes_asks_and_the_title_shows_it(request, tmp_path):
+    """Ctrl+Q (or the close button) on a modified document opens Save / Discard / Cancel; Cancel
+    keeps the window, Save writes the file and quits, Discard quits; the title is ``name — jackpy``
+    with ``*`` while modified."""
+    if in_child_process(request):
+        return
+    from jackpy.ui.panels.menu_bar import quit_choice
+
+    env, base = session.default_scene()
+    app = App(env)
+    app.scene_dir = base
+    win = Window(app, "jackpy", (800, 600), visible=False)
+    try:
+        win.frame()
+        assert win._title == "untitled \u2014 jackpy"
+        fig = app.figure_of_interest()
+        app.doc.set_dof(fig, "right_elbow", 0, 0.5)
+        win.frame()
+        assert app.dirty and win._title == "*untitled \u2014 jackpy"
+        win.key_callback(None, ord("Q"), 0, 1, 2)  # Ctrl+Q
+        assert not win.should_close and win.ui.confirm == "quit"
+        win.frame()  # the prompt is drawn
+        quit_choice(app, win.ui, "cancel")
+        assert not win.should_close and win.ui.confirm is None
+        import glfw
+
+        glfw.set_window_should_close(win.handle, True)  # the window's close button
+        assert not win.should_close and win.ui.confirm == "quit"
+        app.doc.path = tmp_path / "q.env"
+        quit_choice(app, win.ui, "save")
+        assert (tmp_path / "q.env").is_file() and not app.dirty and win.should_close
+        win.frame()
+        assert win._title == "q.env \u2014 jackpy"
+        win.ui.quit_confirmed = win.ui.quit_requested = False
+        app.doc.set_dof(fig, "right_elbow", 0, 0.2)
+        win.ui.quit_requested = True
+        assert not win.should_close
+        quit_choice(app, win.ui, "discard")
+        assert win.should_close
+    finally:
+        win.close()

@@ -77,6 +77,7 @@ class Window:
         self.ui = UiState()
         self.gizmo = Gizmo()
         self._closed = False
+        self._title = title
         self._quiet = 0  # frames since the last input or activity
         # keep references: glfw holds only C pointers to these
         self._callbacks = (self.cursor_pos_callback, self.mouse_button_callback, self.scroll_callback,
@@ -121,8 +122,8 @@ class Window:
     def key_callback(self, window: object, key: int, scancode: int, action: int, mods: int) -> None:
         self._quiet = 0
         imgui.backends.glfw_key_callback(self._addr, key, scancode, action, mods)
-        if imgui.get_io().want_capture_keyboard and key != KEY_ESCAPE:
-            return
+        if imgui.get_io().want_text_input and key != KEY_ESCAPE:
+            return  # typing in a text field; anywhere else the shortcuts work (a panel has the focus)
         if action == PRESS and mods & MOD_CONTROL and key in (KEY_O, KEY_S, KEY_Q):
             self._shortcut(key)
             return
@@ -170,6 +171,7 @@ class Window:
             self.ctx.viewport = (0, 0, fw, fh)
             self.app.renderer.blit(self.ctx.screen)
         imgui.backends.opengl3_render_draw_data(imgui.get_draw_data())
+        self.update_title()
         glfw.swap_buffers(self.handle)
         busy = self.app.needs_solve or self.app.driving or (
             self.app.renderer is not None and self.app.renderer.frames_drawn != drawn)
@@ -182,7 +184,22 @@ class Window:
 
     @property
     def should_close(self) -> bool:
-        return bool(glfw.window_should_close(self.handle)) or self.ui.quit_requested
+        """Whether to end: a quit (Ctrl+Q, File → Quit, the window's close button) of a clean
+        document, or one confirmed by Discard or a Save; with unsaved changes a quit asks first."""
+        asked = bool(glfw.window_should_close(self.handle)) or self.ui.quit_requested
+        if asked and self.app.dirty and not self.ui.quit_confirmed:
+            glfw.set_window_should_close(self.handle, False)
+            self.ui.quit_requested = False
+            self.ui.confirm = "quit"  # Save / Discard / Cancel (menu_bar)
+            return False
+        return asked
+
+    def update_title(self) -> None:
+        """``name — jackpy`` with ``*`` when the document has unsaved changes."""
+        title = f"{self.app.doc.title} \u2014 jackpy"
+        if title != self._title:
+            glfw.set_window_title(self.handle, title)
+            self._title = title
 
     def run(self, autosave: Callable[[], None] | None = None) -> None:
         """Run frames until the window is closed; ``autosave`` is called every ``settings.autosave_s``."""

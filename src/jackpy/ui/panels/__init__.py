@@ -63,6 +63,12 @@ class UiState:
     """Which path prompt is open: ``"open"``, ``"save_as"``, ``"import"``, ``"screenshot"``."""
     prompt_text: str = ""
     quit_requested: bool = False
+    quit_confirmed: bool = False
+    """Set by Discard (or a save) in the quit prompt: the next quit ends without asking."""
+    quit_after_save: bool = False
+    """The Save-as prompt was opened by the quit prompt's Save: quit once it saved."""
+    confirm: str | None = None
+    """An open confirmation: ``"quit"`` (Save / Discard / Cancel of unsaved changes)."""
     recovery_offer: str | None = None
     """A recovery file found at start-up, offered once."""
     import_units: str = "m"

@@ -70,6 +70,7 @@ def draw(app: "App", ui: "UiState") -> None:
         imgui.end_main_menu_bar()
     _draw_prompt(app, ui)
     _draw_recovery(app, ui)
+    _draw_confirm(app, ui)
 
 
 def _prompt(ui: "UiState", kind: str, text: str) -> None:
@@ -101,7 +102,7 @@ def _draw_prompt(app: "App", ui: "UiState") -> None:
         imgui.same_line()
         cancel = imgui.button("Cancel")
         if done and ui.prompt_text.strip():
-            path, kind = Path(ui.prompt_text.strip()).expanduser(), ui.prompt
+            path, kind = Path(ui.prompt_text.strip()).expanduser().absolute(), ui.prompt
             actions = {
                 "open": lambda: session.open_session(app, path),
                 "save_as": lambda: session.save_session(app, path),
@@ -109,7 +110,10 @@ def _draw_prompt(app: "App", ui: "UiState") -> None:
                 "screenshot": lambda: screenshot.save_view(app, path),
             }
             _run(app, actions[kind])
+            if kind == "save_as" and ui.quit_after_save and not app.dirty:
+                ui.quit_confirmed = ui.quit_requested = True
         if done or cancel:
+            ui.quit_after_save = False
             ui.prompt = None
             imgui.close_current_popup()
         imgui.end_popup()
@@ -128,6 +132,42 @@ def _import_options(ui: "UiState") -> None:
     imgui.set_next_item_width(60)
     i = IMPORT_UP.index(ui.import_up) if ui.import_up in IMPORT_UP else 0
     ui.import_up = IMPORT_UP[imgui.combo("up axis", i, IMPORT_UP)[1]]
+
+
+QUIT_PROMPT = "Unsaved changes##quit"
+
+
+def quit_choice(app: "App", ui: "UiState", choice: str) -> None:
+    """The quit prompt's answer: ``"save"`` (save, then quit; Save-as first for an unnamed
+    document), ``"discard"`` (quit without saving), ``"cancel"`` (keep working)."""
+    from jackpy.ui import session
+
+    ui.confirm = None
+    if choice == "save":
+        if app.session_path is None:
+            _prompt(ui, "save_as", str(Path.home() / "scene.env"))
+            ui.quit_after_save = True
+            return
+        _run(app, lambda: session.save_session(app, app.session_path))
+        if not app.dirty:
+            ui.quit_confirmed = ui.quit_requested = True
+    elif choice == "discard":
+        ui.quit_confirmed = ui.quit_requested = True
+
+
+def _draw_confirm(app: "App", ui: "UiState") -> None:
+    if ui.confirm != "quit":
+        return
+    imgui.open_popup(QUIT_PROMPT)
+    if imgui.begin_popup_modal(QUIT_PROMPT, None, imgui.WindowFlags_.always_auto_resize)[0]:
+        imgui.text(f"Save the changes to {app.doc.title.lstrip('*')} before quitting?")
+        for label, choice in (("Save", "save"), ("Discard", "discard"), ("Cancel", "cancel")):
+            if imgui.button(label):
+                quit_choice(app, ui, choice)
+                imgui.close_current_popup()
+            imgui.same_line()
+        imgui.new_line()
+        imgui.end_popup()
 
 
 def _draw_recovery(app: "App", ui: "UiState") -> None:
