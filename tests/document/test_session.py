@@ -344,3 +344,23 @@ def test_random_kill_9_during_saves_leaves_a_whole_session(tmp_path):
             assert len(list(doc_session.psurf_root(path).iterdir())) == 1
     assert 0 < sum(outcomes) < len(outcomes)  # kills landed before and after the commit
     assert leftovers > 0  # kills mid-write did leave temporary files for the next save to remove
+
+
+def test_recovery_is_offered_for_the_scene_it_autosaved(tmp_path, monkeypatch):
+    """A crashed run's autosave of scene S is offered when the workbench opens S (and restores the
+    work as S, modified), not when it opens another scene."""
+    monkeypatch.setenv("JACKPY_HOME", str(tmp_path / "home"))
+    app = posed_app()
+    scene = tmp_path / "s.env"
+    session.save_session(app, scene)
+    fig = app.figure_of_interest()
+    fig.q = np.clip(fig.q + 0.1, fig.lower, fig.upper)  # work after the save, then a crash
+    session.autosave(app)
+    assert session.recovery_offer(scene) == session.pending_recovery()
+    assert session.recovery_offer(tmp_path / "other.env") is None
+    other = App(session.default_scene()[0])
+    session.open_session(other, scene)
+    session.recover(other, session.recovery_offer(scene))
+    assert other.session_path == scene.resolve() and other.dirty
+    assert np.array_equal(other.env.figure(fig.name).q, fig.q)
+    assert session.pending_recovery() is None

@@ -35,8 +35,8 @@ def run(args: argparse.Namespace) -> int:
         load_into(app.doc, args.motion)
     window = Window(app, "jackpy")
     try:
-        if args.scene is None:
-            window.ui.recovery_offer = str(p) if (p := session.pending_recovery()) else None
+        offer = session.recovery_offer(args.scene)  # a crashed run's autosave of this scene
+        window.ui.recovery_offer = str(offer) if offer is not None else None
         flock = getattr(args, "flock", None)
         if flock:
             from jackpy.ui.panels.devices import link_of

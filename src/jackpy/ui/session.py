@@ -5,11 +5,13 @@
 
 from __future__ import annotations
 
+import json
 import os
 from pathlib import Path
 from typing import TYPE_CHECKING
 
 from jackpy.document import Document
+from jackpy.errors import JackpyError
 from jackpy.document.session import (  # noqa: F401  (re-exported)
     default_scene,
     discard_recovery,
@@ -60,13 +62,44 @@ def import_cad_file(app: App, path: str | os.PathLike[str], units: str = "m", up
 
 
 def autosave(app: App) -> None:
-    """Write the recovery file (without changing the session's own path)."""
-    save_session(app, recovery_path(), remember=False)
+    """Write the recovery file (without changing the session's own path); it remembers which
+    scene it is the autosave of."""
+    app.doc.view_state["autosave_of"] = str(Path(app.session_path).resolve()) if app.session_path else None
+    try:
+        save_session(app, recovery_path(), remember=False)
+    finally:
+        app.doc.view_state.pop("autosave_of", None)
+
+
+def recovery_scene(path: Path) -> Path | None:
+    """The scene a recovery file is the autosave of (None: an unnamed scene, or unreadable)."""
+    try:
+        found = doc_session._session_line(Path(path))
+        data = json.loads(found[0]) if found else {}
+        of = (data.get("view") or {}).get("autosave_of")
+    except (JackpyError, ValueError, AttributeError):
+        return None
+    return Path(of) if isinstance(of, str) else None
+
+
+def recovery_offer(scene: str | os.PathLike[str] | None) -> Path | None:
+    """The recovery file to offer when the workbench starts on ``scene`` (None: the default
+    scene): one a crashed run left behind for that scene, or for an unnamed scene when no scene
+    is given."""
+    found = pending_recovery()
+    if found is None:
+        return None
+    of = recovery_scene(found)
+    if scene is None:
+        return found
+    return found if of is not None and of == Path(scene).resolve() else None
 
 
 def recover(app: App, path: Path) -> None:
-    """Open the recovery file as an unsaved scene, then delete it."""
+    """Open the recovery file as an unsaved scene (of the file it autosaved, if any), then delete it."""
+    of = recovery_scene(path)
     open_session(app, path)
-    app.doc.path = None
+    app.doc.view_state.pop("autosave_of", None)
+    app.doc.path = of
     app.doc.dirty = True
     discard_recovery(path)
