@@ -96,3 +96,11 @@ def test_fuzzed_studies_parse_or_raise_invalid(data: dict) -> None:
         parse_study(data)
     except jsonfile.Invalid:
         pass
+
+
+def test_cli_unreachable_scheduler_is_one_line_exit_2(tmp_path: Path) -> None:
+    run = subprocess.run([sys.executable, "-m", "jackpy", "sweep", str(SCENE), "--study",
+                          str(ROOT / "examples" / "workplace" / "study.json"), "--n", "4", "--scheduler",
+                          "tcp://127.0.0.1:1", "-o", str(tmp_path / "out")], capture_output=True, text=True)
+    assert run.returncode == 2
+    assert run.stderr.count("\n") == 1 and "cannot reach the Dask scheduler" in run.stderr

@@ -57,6 +57,7 @@ def run(args: argparse.Namespace) -> int:
         raise JackpyError(f"--workers must be 0 or more, not {args.workers}")
     wp, study = load_workplace(args.scene), load_study(args.study)
     check_against_scene(study, wp.env)  # bad names fail before any work
+    client = _connect(args.scheduler) if args.scheduler else None  # so does an unreachable scheduler
     bodies = None
     description: dict = {}
     if not args.resume:
@@ -66,9 +67,8 @@ def run(args: argparse.Namespace) -> int:
         description = {"population": {"n": len(bodies), "family": share, "family_dims": dims if share else None,
                                       "sex_mix": args.sex_mix, "seed": args.seed}}
     try:
-        result, table = sweep(wp, study, bodies, args.output, workers=args.workers,
-                              scheduler=args.scheduler, resume=args.resume, progress=not args.no_progress,
-                              description=description)
+        result, table = sweep(wp, study, bodies, args.output, workers=args.workers, client=client,
+                              resume=args.resume, progress=not args.no_progress, description=description)
     except KeyboardInterrupt:
         from jackpy.population.evaluate import columns
         from jackpy.population.journal import Journal
@@ -77,8 +77,25 @@ def run(args: argparse.Namespace) -> int:
         print(f"\njackpy: interrupted: {kept} finished rows kept in {args.output}; finish with --resume",
               file=sys.stderr)
         return 130
+    finally:
+        if client is not None:
+            client.close()
     for a in table:
         binding = f", binding {a.binding_dimension} ({a.fails_when} fail)" if a.binding_dimension else ""
         print(f"{a.criterion}: {100 * a.share:.1f} % ({a.passed}/{a.bodies}){binding}")
     print(f"{result.evaluated} bodies in {result.seconds:.1f} s; report: {args.output}/report.html")
     return 0
+
+
+def _connect(address: str):
+    """A Dask client of the scheduler at ``address`` (one-line error when it cannot be reached)."""
+    from jackpy.population.journal import SweepError
+
+    try:
+        from dask.distributed import Client
+    except ImportError:
+        raise SweepError("Dask is not installed: pip install 'jackpy[cluster]' (dask distributed)") from None
+    try:
+        return Client(address, timeout="10s")
+    except (OSError, TimeoutError, ValueError) as exc:
+        raise SweepError(f"cannot reach the Dask scheduler at {address}: {exc}") from None
