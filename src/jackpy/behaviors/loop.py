@@ -38,7 +38,7 @@ from jackpy.behaviors.base import Behavior, BehaviorBase
 from jackpy.behaviors.state import BehaviorState, FootState, HandState
 from jackpy.behaviors.support import BalanceFrame, convex_hull, floor, yaw_of
 from jackpy.ik import Problem, solve
-from jackpy.ik.goals import GOAL_TYPES, Aim, CentreOfMass, Goal, Orientation, Plane, Position
+from jackpy.ik.goals import GOAL_TYPES, Aim, CentreOfMass, Goal
 from jackpy.ik.goals.base import Context
 from jackpy.peabody.kinematics import FKResult
 from jackpy.peabody.model import Figure
