@@ -86,13 +86,41 @@ def test_percent_capable_falls_with_the_load(poser):
     assert "shoulder" in r.worst or "elbow" in r.worst
 
 
-def test_legs_only_when_rooted_at_a_foot(poser):
-    r = assess(poser.f, ["capable"], Task())["capable"]
-    assert not any(x["joint"].endswith("knee") for x in r.worksheet["joints"])
-    assert any("legs not assessed" in f for f in r.flags)
-    poser.f.reroot("left_foot", "heel")
+def test_legs_stand_on_the_feet_whatever_the_root(poser):
+    poser.hinge(30.0)
+    r = assess(poser.f, ["capable"], Task(load_kg=10.0))["capable"]
+    rows = {(x["joint"], x["dof"]): x for x in r.worksheet["joints"]}
+    assert r.worksheet["weight_share"] == pytest.approx({"left": 0.5, "right": 0.5}, abs=1e-4)
+    hips = rows[("left_hip", "flexion")]["moment_Nm"] + rows[("right_hip", "flexion")]["moment_Nm"]
+    poser.f.reroot("left_foot", "heel")  # the same posture rooted at a foot: the same standing torques
     try:
-        r = assess(poser.f, ["capable"], Task())["capable"]
-        assert any(x["joint"] == "left_knee" for x in r.worksheet["joints"])
+        again = assess(poser.f, ["capable"], Task(load_kg=10.0))["capable"]
     finally:
         poser.f.reroot("pelvis", "centre")
+    rows2 = {(x["joint"], x["dof"]): x for x in again.worksheet["joints"]}
+    for key in (("left_hip", "flexion"), ("right_knee", "flexion"), ("l5_s1", "flexion")):
+        assert abs(rows2[key]["moment_Nm"]) == pytest.approx(abs(rows[key]["moment_Nm"]), rel=1e-6, abs=1e-6)
+    assert hips < 0  # the hip extensors hold the bent-forward trunk
+    seated = assess(poser.f, ["capable"], Task(seated=True))["capable"]
+    assert not any(x["joint"].endswith("knee") for x in seated.worksheet["joints"])
+    assert any("seated" in f for f in seated.flags)
+
+
+def test_foot_reactions_hold_the_whole_body(poser):
+    """The floor's reactions balance the body: the hips' torques equal the moment of everything
+    above them about the hip axis, computed here from the segments' centres of mass."""
+    from jackpy.analysis.statics import G, foot_reactions
+
+    stoop(poser, 30.0)
+    f = poser.f
+    kin = f.kinematics()
+    fk = kin.forward(f.q, f.location)
+    reactions = foot_reactions(f, [], ["left_foot", "right_foot"], fk)
+    assert sum(r.force for r in reactions) == pytest.approx([0.0, kin.mass.sum() * G, 0.0])
+    tau = joint_torques(f, reactions, fk=fk)
+    legs = [n for n in kin.segment_names if n.split("_", 1)[-1] in ("thigh", "shank", "foot", "toes")]
+    coms = kin.segment_coms(fk)
+    hip = fk.segments[kin.segment_index["left_thigh"]][:3, 3]
+    upper = sum(kin.mass[i] * G * (coms[i][2] - hip[2]) for i, n in enumerate(kin.segment_names) if n not in legs)
+    hips = tau[f.joint_dof_slice("left_hip")][2] + tau[f.joint_dof_slice("right_hip")][2]
+    assert upper > 10.0 and hips == pytest.approx(-upper, rel=1e-9)

@@ -1,8 +1,10 @@
 """Percent capable: for each main joint moment, the share of a population (by sex) strong enough.
 
-The required moments are the static joint torques of :func:`jackpy.analysis.statics.joint_torques`
-(gravity on every segment plus ``task.load_kg`` in the hands, half at each grip site, the figure held
-at its root). The strength of the muscle group that must act comes from the public API of
+The required moments are the static joint torques of :func:`jackpy.analysis.statics.joint_torques`:
+gravity on every segment plus ``task.load_kg`` in the hands (half at each grip site), standing on
+the feet that touch the floor (:func:`~jackpy.analysis.statics.foot_reactions`: the weight shared
+by the lever rule, each foot pushing at its centre of pressure), so the legs carry the body whatever
+the figure's root. The strength of the muscle group that must act comes from the public API of
 :mod:`jackpy.body.strength` (``torque(kind, dof, sex, percentile)``; its data and percentile model are
 documented there). Percent capable = ``100 - P*`` where the group's strength at percentile ``P*``
 equals the required moment, found on a grid of percentiles (1-99, the range that module accepts) and
@@ -10,9 +12,9 @@ interpolated linearly in their normal quantiles z (exact for that module's linea
 result is clamped to 1-99 % (99 means 99 % or more, 1 means 1 % or fewer). The weakest joint is the one
 with the lowest percent capable.
 
-Joints: neck (atlanto-occipital), trunk (L5/S1), each shoulder (its three DOFs), elbow and wrist; the
-hips, knees and ankles only when the figure is rooted at a foot (otherwise its legs hang from the root
-and their torques are not the standing ones: flagged).
+Joints: neck (atlanto-occipital), trunk (L5/S1), each shoulder (its three DOFs), elbow and wrist, and
+the hips, knees and ankles of the feet bearing weight; seated (``task.seated``) the legs are left out
+(the seat carries them: flagged).
 """
 
 from __future__ import annotations
@@ -22,7 +24,7 @@ from typing import Any
 import numpy as np
 from scipy.stats import norm
 
-from jackpy.analysis.statics import Load, joint_torques
+from jackpy.analysis.statics import Load, foot_reactions, joint_torques
 from jackpy.ergonomics.base import Assessment, Method, Task, register
 from jackpy.ergonomics.posture import SIDES, Posture
 from jackpy.peabody.kinematics import FKResult
@@ -55,15 +57,19 @@ def assess(figure: Figure, task: Task, posture: Posture, fk: FKResult | None = N
     from jackpy.body.skeleton import dof_names_of, joint_kind
 
     loads = [Load.held_mass(figure, f"{s}_palm", "grip", task.load_kg / 2) for s in SIDES] if task.load_kg > 0 else []
-    tau = joint_torques(figure, loads, fk=fk)
-    root = figure.root_segment()
     flags = []
     joints = list(_UPPER_JOINTS)
-    if root.endswith("_foot") or root.endswith("_toes"):
-        joints += _LEG_JOINTS
-        flags.append(f"legs: the whole body stands on the root foot ({root})")
+    shares: dict[str, float] = {}
+    if task.seated:
+        flags.append("legs not assessed: seated (the seat carries them)")
     else:
-        flags.append(f"legs not assessed: the figure is held at its root ({root}); root it at a foot for leg moments")
+        bearing = posture.feet_bearing()
+        reactions = foot_reactions(figure, loads, [f"{s}_foot" for s in bearing], fk)
+        total = sum(float(r.force[1]) for r in reactions) or 1.0
+        shares = {r.segment.removesuffix("_foot"): float(r.force[1]) / total for r in reactions}
+        loads = loads + reactions
+        joints += [j for j in _LEG_JOINTS if j.split("_")[0] in bearing]
+    tau = joint_torques(figure, loads, fk=fk)
     sexes = ["male", "female"] if task.sex == "both" else [task.sex]
     rows: list[dict[str, Any]] = []
     for jn in joints:
@@ -92,7 +98,7 @@ def assess(figure: Figure, task: Task, posture: Posture, fk: FKResult | None = N
     lv = 1 if score >= 99.0 else (2 if score >= 75.0 else 3)
     text = {1: "almost everyone capable (>= 99 %)", 2: "most capable (75-99 %)",
             3: "fewer than 75 % capable: redesign"}[lv]
-    ws = {"joints": rows, "sexes": sexes, "load_kg": task.load_kg,
+    ws = {"joints": rows, "sexes": sexes, "load_kg": task.load_kg, "weight_share": shares,
           "weakest": {s: {"joint": weakest[s]["joint"], "dof": weakest[s]["dof"],
                           "capable_pct": weakest[s][score_key[s]]} for s in sexes}}
     return Assessment("capable", score, lv, f"{text}; weakest {w['joint']} {w['dof']} ({worst_sex})", ws,
