@@ -134,10 +134,6 @@ def test_arm_motion_reaches_a_point_with_the_arm_only(scene):
     assert np.linalg.norm(fig.site_world("pelvis", "centre")[:3, 3] - pelvis0) < 0.02
 
 
-class Box:
-    pass
-
-
 def moving_object(env, name, position):
     from jackpy.peabody.model import Figure
 

@@ -70,11 +70,9 @@ class BVH:
         trans = np.tile(np.stack([j.offset for j in self.joints]), (n, 1, 1)).astype(float)
         for k, j in enumerate(self.joints):
             cols = {c: j.first_channel + i for i, c in enumerate(j.channels)}
-            pos = [c for c in ("Xposition", "Yposition", "Zposition") if c in cols]
             for axis, c in enumerate(("Xposition", "Yposition", "Zposition")):
                 if c in cols:
                     trans[:, k, axis] = data[:, cols[c]]
-            del pos
             order = j.rotation_order
             if order:
                 angles = np.stack([data[:, cols[f"{a}rotation"]] for a in order], axis=1)

@@ -62,9 +62,8 @@ def _local(world: dict[str, np.ndarray], tree) -> list[np.ndarray]:
 
 
 def _quat(m: np.ndarray) -> np.ndarray:
-    """glTF quaternions (x, y, z, w) of rotation matrices (..., 3, 3), sign kept continuous."""
-    q = Rotation.from_matrix(m).as_quat()
-    return q
+    """glTF quaternion (x, y, z, w) of a rotation matrix."""
+    return Rotation.from_matrix(m).as_quat()
 
 
 def build_gltf(figure, baked, fps: float) -> gl.GLTF2:
@@ -101,8 +100,7 @@ def build_gltf(figure, baked, fps: float) -> gl.GLTF2:
             continue
         w = rest[seg]
         pos.append(mesh.vertices @ w[:3, :3].T + w[:3, 3])
-        nrm.append(mesh.vertex_normals() @ w[:3, :3].T if callable(mesh.vertex_normals) else
-                   mesh.vertex_normals @ w[:3, :3].T)
+        nrm.append(mesh.vertex_normals() @ w[:3, :3].T)
         joints.append(np.full(len(mesh.vertices), k))
         faces.append(mesh.faces + base)
         base += len(mesh.vertices)

@@ -3,7 +3,7 @@
 Time runs left to right in seconds (3 s visible at first; the span slider widens it). One track
 per (figure, part); each motion is a bar from its start to its end tick with its weight function
 (yellow) and velocity function (green) drawn over it as icons. Drag a bar to time-shift it, drag
-its ends to retime it, right-click it to toggle or delete it; drag in the ruler to scrub. Play /
+its ends to retime it, right-click it to edit its times and weight, toggle or delete it; drag in the ruler to scrub. Play /
 pause, loop, frame step, playback speed, and "set key" for a part of the figure at the current
 time. Every edit is one document command, so Ctrl+Z undoes it. Playback shows baked postures at
 the real frame rate (:class:`jackpy.motion.player.Player`), dropping frames rather than slowing
@@ -193,6 +193,19 @@ def _bar_handles(app: "App", player, state: dict, m, mi: int, x0: float, x1: flo
             state["drag"] = None
             app.doc.end_edit("shift motion" if which == "body" else "retime motion")
         if which == "body" and imgui.begin_popup_context_item(f"##menu{mi}"):
+            imgui.text(f"{m.kind} motion {m.label}")
+            for name, lo, hi in (("t0", 0.0, 600.0), ("t1", 0.0, 600.0), ("weight", 0.0, 100.0)):
+                if name == "weight" and not m.weighted:
+                    continue
+                imgui.set_next_item_width(120)
+                changed, v = imgui.drag_float(name, float(getattr(m, name)), 0.01, lo, hi)
+                if imgui.is_item_activated():
+                    app.doc.begin_edit()
+                if changed:
+                    setattr(m, name, v)
+                    m.t1 = max(m.t0, m.t1)
+                if imgui.is_item_deactivated():
+                    app.doc.end_edit(f"edit motion {name}")
             if imgui.menu_item("disable" if m.enabled else "enable", "", False)[0]:
                 player.toggle(m)
             if imgui.menu_item("delete", "", False)[0]:
