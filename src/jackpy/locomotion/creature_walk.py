@@ -129,6 +129,19 @@ class Swing:
 
 
 @dataclass
+class Landing:
+    """One planned foothold: at lift-off ``frame`` leg ``leg`` plans to land at ``foothold``;
+    ``desired`` is where it wanted to (before backing off forbidden zones); ``safe`` is false when no
+    safe point existed and the foot steps in place."""
+
+    frame: int
+    leg: int
+    foothold: np.ndarray
+    desired: np.ndarray
+    safe: bool
+
+
+@dataclass
 class WalkResult:
     """A baked walk: per frame the posture, every foot's world position (from forward kinematics
     of the solved posture), which feet the schedule puts in stance, the body's least clearance over
@@ -148,7 +161,7 @@ class WalkResult:
     body_clearance: np.ndarray  # (N,)
     ik_error: np.ndarray  # (N, n_legs)
     events: EventLog
-    landings: list[tuple[int, int, np.ndarray, bool]]  # (frame, leg, foothold, safe-found)
+    landings: list["Landing"]
 
     @property
     def times(self) -> np.ndarray:
@@ -273,7 +286,7 @@ def walk(fig: Figure, terrain: Terrain, goal: Sequence[float], *, seconds: float
                 mid = path.pose(t_land + 0.5 * gait.duty[k] * gait.cycle)
                 desired = neutral_on_terrain(mid, leg)
                 p1, safe = plan_foothold(terrain, desired, footholds[k], 0.5 * c.foot_radius)
-                landings.append((i, k, p1, safe))
+                landings.append(Landing(i, k, p1, desired, safe))
                 peak = max(terrain.max_height_along(footholds[k][[0, 2]], p1[[0, 2]]), footholds[k][1], p1[1]) + c.swing_clearance
                 swings[k] = Swing(footholds[k].copy(), p1, t_up, t_land, peak)
                 if i > 0:

@@ -47,7 +47,7 @@ class Gait:
     def in_stance(self, t: float) -> np.ndarray:
         """Boolean per foot at time ``t`` (s)."""
         rel = (self.phase(t) - self.down) % 1.0
-        return rel < self.duty - 1e-12
+        return rel < self.duty
 
     def next_down(self, k: int, t: float) -> float:
         """The first time >= ``t`` at which foot ``k`` goes down."""
