@@ -46,8 +46,7 @@ def _frame_timer(with_cad: bool, repeat: int):
     screen = ctx.framebuffer([screen_rb])
     app = App(env, renderer, SIZE)
     if with_cad:
-        cad = env.add(_cad_object())
-        app.view.cad_figures.add(cad.name)
+        env.add(_cad_object())  # a CADObject: drawn translucent by its type
     app.camera.set_preset("front")
     app.step()
     fig = app.figure_of_interest()
