@@ -5,6 +5,8 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import pytest
+
 from jackpy.population.evaluate import SweepContext, columns, evaluate_body
 from jackpy.population.generate import make_body
 from jackpy.population.study import check_against_scene, parse_study
@@ -13,6 +15,7 @@ from jackpy.scene.workplace import load_workplace
 SCENE = Path(__file__).resolve().parents[2] / "examples" / "workplace" / "workplace.json"
 
 
+@pytest.mark.timeout(900)
 def test_full_figure_criteria() -> None:
     study = parse_study({"jackpy_study": 1, "reach": ["desk.button"],
                          "clearance": [{"object": "desk", "min_m": 0.0, "posture": "desk.button"},

@@ -40,6 +40,7 @@ def test_monte_carlo_bodies_measured_from_their_figures_reproduce_the_model() ->
         assert np.all(np.abs(np.corrcoef(m, rowvar=False) - sm.corr) < 0.03), (sex, np.corrcoef(m, rowvar=False) - sm.corr)
 
 
+@pytest.mark.timeout(900)
 def test_a_body_measures_what_it_asks_for() -> None:
     model = PopulationModel.ansur2(CONTROLLED)
     sm = model.sex("female")

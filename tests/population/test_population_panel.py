@@ -6,6 +6,7 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
+import pytest
 
 from jackpy.population.model import PopulationModel
 from jackpy.scene.workplace import load_workplace
@@ -19,6 +20,7 @@ def test_panel_is_discovered() -> None:
     assert TITLE in [p.title for p in panels()]
 
 
+@pytest.mark.timeout(900)
 def test_family_side_by_side_and_removed() -> None:
     wp = load_workplace(EXAMPLE / "workplace.json")
     before = set(wp.env.figures)
@@ -35,6 +37,7 @@ def test_family_side_by_side_and_removed() -> None:
     assert set(wp.env.figures) == before
 
 
+@pytest.mark.timeout(900)
 def test_small_sweep_in_the_background(tmp_path: Path) -> None:
     wp = load_workplace(EXAMPLE / "workplace.json")
     job = start_sweep(wp.env, str(EXAMPLE / "study.json"), 6, str(tmp_path / "out"), workers=1)
