@@ -70,7 +70,7 @@ class PronkConfig:
     #: apex height of each jump above takeoff (m)
     jump_height: float = 0.06
     #: horizontal distance of each jump (m)
-    jump_distance: float = 0.25
+    jump_distance: float = 0.08
     #: crouch height: hip height above the feet (fraction of the figure's standing height) where the
     #: landing phase stops the fall
     crouch_fraction: float = 0.8
