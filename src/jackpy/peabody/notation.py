@@ -65,13 +65,15 @@ def _fast_matrix(prim: Prim) -> np.ndarray:
     name, a = prim
     if name == "trans":
         return np.array([[1.0, 0, 0, a[0] * CM], [0, 1.0, 0, a[1] * CM], [0, 0, 1.0, a[2] * CM], [0, 0, 0, 1.0]])
-    if name in ("rotx", "roty", "rotz"):
-        c, s = math.cos(a[0] * DEG), math.sin(a[0] * DEG)
-        if name == "rotx":
-            return np.array([[1.0, 0, 0, 0], [0, c, -s, 0], [0, s, c, 0], [0, 0, 0, 1.0]])
-        if name == "roty":
-            return np.array([[c, 0, s, 0], [0, 1.0, 0, 0], [-s, 0, c, 0], [0, 0, 0, 1.0]])
-        return np.array([[c, -s, 0, 0], [s, c, 0, 0], [0, 0, 1.0, 0], [0, 0, 0, 1.0]])
+    if name in _ROTATIONS:
+        r0, r1, r2 = _rotation_rows(prim)
+        return np.array([[*r0, 0.0], [*r1, 0.0], [*r2, 0.0], [0.0, 0.0, 0.0, 1.0]])
+    return prim_matrix(prim)
+
+
+def _rotation_rows(prim: Prim) -> tuple[tuple[float, float, float], ...]:
+    """The 3x3 rotation of a ``rotx``/``roty``/``rotz``/``rot`` primitive as rows of floats."""
+    name, a = prim
     if name == "rot":
         big = max(abs(a[0]), abs(a[1]), abs(a[2]))
         x, y, z = a[0] / big, a[1] / big, a[2] / big
@@ -79,16 +81,30 @@ def _fast_matrix(prim: Prim) -> np.ndarray:
         x, y, z = x / n, y / n, z / n
         c, s = math.cos(a[3] * DEG), math.sin(a[3] * DEG)
         C = 1.0 - c
-        return np.array([[c + x * x * C, x * y * C - z * s, x * z * C + y * s, 0],
-                         [y * x * C + z * s, c + y * y * C, y * z * C - x * s, 0],
-                         [z * x * C - y * s, z * y * C + x * s, c + z * z * C, 0], [0, 0, 0, 1.0]])
-    return prim_matrix(prim)
+        return ((c + x * x * C, x * y * C - z * s, x * z * C + y * s),
+                (y * x * C + z * s, c + y * y * C, y * z * C - x * s),
+                (z * x * C - y * s, z * y * C + x * s, c + z * z * C))
+    c, s = math.cos(a[0] * DEG), math.sin(a[0] * DEG)
+    if name == "rotx":
+        return ((1.0, 0.0, 0.0), (0.0, c, -s), (0.0, s, c))
+    if name == "roty":
+        return ((c, 0.0, s), (0.0, 1.0, 0.0), (-s, 0.0, c))
+    return ((c, -s, 0.0), (s, c, 0.0), (0.0, 0.0, 1.0))
+
+
+_ROTATIONS = frozenset(["rotx", "roty", "rotz", "rot"])
 
 
 def compose(prims: list[Prim]) -> np.ndarray:
     """Column matrix of the file product ``p1 * p2 * ... * pn``, i.e. ``pn @ ... @ p2 @ p1``."""
     if not prims:
         return np.eye(4)
+    n = len(prims)
+    if n <= 2 and prims[-1][0] == "trans" and (n == 1 or prims[0][0] in _ROTATIONS):
+        # the writer's (and most files') form ``rot... * trans(...)``: one array, no products
+        (r0, r1, r2) = _rotation_rows(prims[0]) if n == 2 else ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
+        t = prims[-1][1]
+        return np.array([[*r0, t[0] * CM], [*r1, t[1] * CM], [*r2, t[2] * CM], [0.0, 0.0, 0.0, 1.0]])
     out = _fast_matrix(prims[0])
     for p in prims[1:]:
         out = _fast_matrix(p) @ out

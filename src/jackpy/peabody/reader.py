@@ -53,6 +53,11 @@ _PRIMS = "a transform (trans, scale, rotx, roty, rotz, rot, matrix)"
 #: largest entry (5e11) of a composed transform's 3x3 part, and of its translation in cm: the writer's
 #: ``scale``, ``rot``, ``trans`` or ``matrix`` form of it then stays within MAX_MAGNITUDE
 _MAX_LINEAR = MAX_MAGNITUDE / 2
+#: the fast path of :meth:`_Parser.prim` takes values up to this; others go the checked way
+_FAST_MAX = MAX_MAGNITUDE
+_DIGITS = frozenset("0123456789")
+_IDSTART = frozenset("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz_")
+_ROTATIONS = frozenset(["rotx", "roty", "rotz", "rot"])
 _BOUNDS = np.full((4, 4), _MAX_LINEAR)
 _BOUNDS[:3, 3] *= CM
 
@@ -135,7 +140,46 @@ class _Parser:
         return self.ts.check_range(value, start, what)
 
     def value_list(self) -> list[_Value]:
-        """``"(" quantity {"," quantity} ")" [unit]``; a trailing unit applies to bare numbers."""
+        """``"(" quantity {"," quantity} ")" [unit]``; a trailing unit applies to bare numbers.
+        Plain numbers with at most a trailing unit take a fast pass; the rest :meth:`value_list_checked`."""
+        ts = self.ts
+        toks, k = ts.tokens, ts.pos
+        if toks[k] != "(":
+            return self.value_list_checked()
+        j = k + 1
+        values: list[_Value] = []
+        while True:
+            start = j
+            t = toks[j]
+            sign = 1.0
+            if t == "-":
+                sign, j = -1.0, j + 1
+                t = toks[j]
+            if not t or t[0] not in _DIGITS:
+                return self.value_list_checked()
+            v = float(t) * sign
+            if not -_FAST_MAX <= v <= _FAST_MAX:
+                return self.value_list_checked()
+            values.append((v, -1, start))
+            j += 1
+            t = toks[j]
+            if t == ",":
+                j += 1
+                continue
+            if t != ")":
+                return self.value_list_checked()
+            break
+        j += 1
+        t = toks[j]
+        if t and t[0] in _IDSTART:
+            if t not in _UNITS:
+                return self.value_list_checked()
+            values = [(v, j, i) for v, _, i in values]
+            j += 1
+        ts.pos = j
+        return values
+
+    def value_list_checked(self) -> list[_Value]:
         ts = self.ts
         ts.expect("(")
         values = [self.quantity()]
@@ -160,6 +204,47 @@ class _Parser:
         return values
 
     def prim(self) -> tuple[Prim, int]:
+        """One transform primitive; the common, well-formed case in one pass over the tokens, the
+        rest (and every error) by :meth:`prim_checked`."""
+        ts = self.ts
+        toks, k = ts.tokens, ts.pos
+        name = toks[k]
+        kinds = PRIM_ARGS.get(name)
+        if kinds is None or name == "rot" or toks[k + 1] != "(":
+            return self.prim_checked()
+        j = k + 2
+        args = []
+        for idx, kind in enumerate(kinds):
+            if idx:
+                if toks[j] != ",":
+                    return self.prim_checked()
+                j += 1
+            t = toks[j]
+            sign = 1.0
+            if t == "-":
+                sign, j = -1.0, j + 1
+                t = toks[j]
+            if not t or t[0] not in _DIGITS:
+                return self.prim_checked()
+            v = float(t) * sign
+            j += 1
+            if kind != "N":
+                u = toks[j]
+                if u and u[0] in _IDSTART:
+                    factor = (LENGTH_UNITS if kind == "L" else ANGLE_UNITS).get(u)
+                    if factor is None:
+                        return self.prim_checked()
+                    v *= factor
+                    j += 1
+            if not -_FAST_MAX <= v <= _FAST_MAX:  # (also false for NaN)
+                return self.prim_checked()
+            args.append(v)
+        if toks[j] != ")":
+            return self.prim_checked()
+        ts.pos = j + 1
+        return (name, tuple(args)), k
+
+    def prim_checked(self) -> tuple[Prim, int]:
         ts = self.ts
         k = ts.pos
         name = ts.tokens[k]
@@ -194,8 +279,12 @@ class _Parser:
             prims.append(prim)
             if not self.ts.accept("*"):
                 break
-        m = compose(prims)
-        if not (np.abs(m) <= _BOUNDS).all():
+        n = len(prims)
+        if n <= 2 and prims[-1][0] == "trans" and (n == 1 or prims[0][0] in _ROTATIONS):
+            ok = max(abs(v) for v in prims[-1][1]) <= _MAX_LINEAR  # (rotation entries are at most 1)
+        else:
+            ok = bool((np.abs(compose(prims)) <= _BOUNDS).all())
+        if not ok:
             raise ParseError("transform out of range (entries at most 5e11, translations at most 5e11 cm)",
                              self.file, *self.ts.position(first))
         return prims
