@@ -145,12 +145,11 @@ class Terrain:
             band = np.any(near & above, axis=1).reshape(xx.shape)
             out[a0:a1, b0:b1] |= on | band
         if self.polygons:
-            from matplotlib.path import Path
+            import shapely
 
             zz, xx = np.meshgrid(zs, xs, indexing="ij")
-            pts = np.column_stack([xx.ravel(), zz.ravel()])
             for poly in self.polygons:
-                out |= Path(poly).contains_points(pts).reshape(out.shape)
+                out |= shapely.contains_xy(shapely.Polygon(poly), xx, zz)
         return out
 
     def is_forbidden(self, x: Any, z: Any) -> Any:
