@@ -53,8 +53,8 @@ def kind_of(tok: str) -> str:
 
 
 def describe(tok: str) -> str:
-    """How an error message names a token (``'foo'``, ``end of file``)."""
-    return EOF if not tok else repr(tok)
+    """How an error message names a token (``'foo'``, ``end of file``; at most 40 characters)."""
+    return EOF if not tok else repr(tok if len(tok) <= 40 else tok[:37] + "...")
 
 
 def split(text: str) -> list[str]:
