@@ -65,7 +65,7 @@ def test_network_analysis_of_a_spider_with_a_stray_node():
     d = Drawing(nodes=[[0, -10], [0, 10]], links=[(0, 1)])
     for body in (0, 1):
         for side in (-1, 1):
-            for k, dy in enumerate((-6, 6)):
+            for dy in (-6, 6):
                 a = len(d.nodes)
                 y = d.nodes[body][1]
                 d.nodes += [[side * 15, y + dy], [side * 30, y + 2 * dy]]
@@ -172,3 +172,23 @@ def test_drawing_round_trip(tmp_path):
     d = draw_insect().drawing
     d.save(tmp_path / "i.json")
     assert Drawing.load(tmp_path / "i.json").to_dict() == d.to_dict()
+
+
+_json = st.recursive(st.none() | st.booleans() | st.integers(-5, 40) | st.floats(allow_nan=False) | st.text(max_size=5),
+                     lambda c: st.lists(c, max_size=4) | st.dictionaries(st.sampled_from(
+                         ["nodes", "links", "style", "units", "name", "thickness", "body_thickness"]), c, max_size=5),
+                     max_leaves=20)
+
+
+@settings(max_examples=150, deadline=None)
+@given(_json)
+def test_fuzzed_drawings_parse_or_fail_cleanly(data):
+    try:
+        d = Drawing.from_dict(data, "fuzz.json")
+    except ParseError as exc:
+        assert str(exc).startswith("fuzz.json: ")
+        return
+    try:
+        build(d)
+    except FigureError:
+        pass

@@ -112,3 +112,17 @@ def test_example_terrains(tmp_path):
     assert not hills.forbidden.any()
     assert steps.forbidden.any()
     assert json.loads((root / "steps.terrain.json").read_text())["jackpy_terrain"] == 1
+
+
+@settings(max_examples=100, deadline=None)
+@given(st.recursive(st.none() | st.integers(-3, 3) | st.floats(allow_nan=False, allow_infinity=False, width=32),
+                    lambda c: st.lists(c, max_size=4) | st.dictionaries(st.sampled_from(
+                        ["heights", "cell", "origin", "max_slope_deg", "foot_radius", "polygons"]), c, max_size=6),
+                    max_leaves=24))
+def test_fuzzed_terrains_parse_or_fail_cleanly(data):
+    try:
+        t = Terrain.from_dict(data, "fuzz.json")
+    except ParseError as exc:
+        assert str(exc).startswith("fuzz.json: ")
+        return
+    assert np.isfinite(t.height(0.0, 0.0))

@@ -27,7 +27,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from jackpy.locomotion.events import EventLog
-from jackpy.locomotion.rigid_body import G, RigidBody, point_mass_inertia, rotation
+from jackpy.locomotion.rigid_body import RigidBody, point_mass_inertia
 from jackpy.locomotion.terrain import Terrain
 
 

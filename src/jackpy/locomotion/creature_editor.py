@@ -25,9 +25,10 @@ vertical in the creation pose, so after folding they flex fore and aft. Head and
 single horizontal axes.
 
 **Default posture.** Insect: each leg's first link rises 30 degrees, its last link points 75
-degrees down, links between in proportion; mammal: the leg folds 80 degrees down, its first link swings 35 degrees
-forward and each knee bends 70 degrees, alternately back and forward. The posture is written as the joints' displacements, so the figure
-stands in its file; walking uses it as the neutral stance.
+degrees down, links between in proportion; mammal: the leg folds 80 degrees down, its first link
+swings 35 degrees and each knee bends 70 degrees, alternately back and forward. The posture is
+written as the joints' displacements, so the figure stands in its file; walking uses it as the
+neutral stance.
 """
 
 from __future__ import annotations

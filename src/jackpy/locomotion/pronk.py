@@ -172,7 +172,6 @@ def pronk(fig: Figure, terrain: Terrain, goal: Sequence[float], *, seconds: floa
     n_steps = int(round(seconds / dt))
     per_frame = c.substeps
     postures, phases, feet_out, ik_err, contact = [], [], [], [], []
-    frame_targets: list[np.ndarray] = []
     max_leg = c.max_leg_force_factor * mass * g / n
     crouch = c.crouch_fraction * stand
 

@@ -217,6 +217,9 @@ class Terrain:
             origin = jf.vector(d.get("origin", [0.0, 0.0]), "origin", 2)
             polys = [[jf.vector(p, f"polygons[{i}][{k}]", 2).tolist() for k, p in enumerate(jf.arr(poly, f"polygons[{i}]"))]
                      for i, poly in enumerate(jf.arr(d.get("polygons", []), "polygons"))]
+            for i, poly in enumerate(polys):
+                if len(poly) < 3:
+                    raise jf.Invalid(f"polygons[{i}]", "a polygon needs at least 3 points")
             return cls(np.array(rows), cell, float(origin[0]), float(origin[1]),
                        max_slope_deg=jf.num(d.get("max_slope_deg", DEFAULT_MAX_SLOPE_DEG), "max_slope_deg", 0, 90),
                        foot_radius=jf.num(d.get("foot_radius", DEFAULT_FOOT_RADIUS), "foot_radius", 0),
@@ -236,8 +239,7 @@ class Terrain:
         except OSError as exc:
             raise ParseError(f"cannot read heightmap: {exc}", str(path)) from None
         peak = 65535.0 if img.max() > 255 else 255.0
-        nz, nx = img.shape
-        cell = size[0] / (nx - 1)
+        cell = size[0] / (img.shape[1] - 1)
         return cls(img / peak * height_scale, cell, -size[0] / 2, -size[1] / 2, name=os.path.basename(str(path)), **kw)
 
 
