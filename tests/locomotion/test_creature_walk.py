@@ -95,3 +95,20 @@ def test_stance_feet_are_the_gait_schedules(name, terrain_name):
 def test_leg_ik_error_is_small(name, terrain_name):
     r = shipped_walk(name, terrain_name)
     assert r.ik_error.max() < 1e-3
+
+
+def test_the_static_hexapod_figure_walks_with_a_shorter_stride():
+    """``figures/hexapod.fig`` (hips turn only 25 degrees) walks with a shorter stride and no other
+    change: any N-legged Peabody figure, legs from its graph."""
+    from creature_cases import ROOT
+
+    from jackpy.locomotion.config import WalkConfig
+    from jackpy.locomotion.creature_walk import walk
+    from jackpy.locomotion.terrain import Terrain
+    from jackpy.peabody.reader import load
+
+    fig = load(ROOT / "figures" / "hexapod.fig").figures["hexapod"]
+    r = walk(fig, Terrain.flat(6.0, 0.25), (0.0, 1.0), config=WalkConfig(fps=10.0, speed=0.1, cycle_time=0.7))
+    assert np.hypot(*(r.body_xz(-1) - r.goal)) < 0.2
+    assert np.abs(r.feet[..., 1])[r.stance].max() < 0.005
+    assert r.ik_error.max() < 1e-3
