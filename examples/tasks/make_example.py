@@ -1,5 +1,5 @@
 """Writes the meshes of the task examples (OBJ, metres): the book's control panel ([SH6] §6.1.5:
-a slab through the six sites), a table, a 10 cm block and a small box.
+a slab through the six sites), a table, a 10 cm block on a closed crate and a small box (too small for the block).
 Run: python3 examples/tasks/make_example.py"""
 
 from pathlib import Path
@@ -39,6 +39,8 @@ def main() -> None:
             for x in (-0.37, 0.37) for z in (-0.27, 0.27)])
     table.export(HERE / "put" / "table.obj")
     trimesh.creation.box([0.1, 0.1, 0.1]).export(HERE / "put" / "block.obj")
+    trimesh.creation.box([0.3, 0.95, 0.3], np.array([[1, 0, 0, 0], [0, 1, 0, 0.475], [0, 0, 1, 0],
+                                                      [0, 0, 0, 1]])).export(HERE / "put" / "crate.obj")
     walls = [([0.08, 0.005, 0.08], [0, 0.0025, 0])] + [
         ([0.005, 0.06, 0.08], [s * 0.0375, 0.03, 0]) for s in (-1, 1)] + [
         ([0.08, 0.06, 0.005], [0, 0.03, s * 0.0375]) for s in (-1, 1)]

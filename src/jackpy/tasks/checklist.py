@@ -30,7 +30,7 @@ from jackpy.tasks.script import Script
 
 TOKEN = re.compile(r"[A-Za-z0-9_\-]+(?:\.[A-Za-z0-9_\-]+)*|[,.]|\S")
 NAME = re.compile(r"[A-Za-z_][A-Za-z0-9_\-.]*$")
-NUMBER = re.compile(r"[0-9]+(\.[0-9]+)?$")
+NUMBER = re.compile(r"-?[0-9]+(\.[0-9]+)?(th|st|nd|rd)?$", re.IGNORECASE)
 
 
 @dataclass
@@ -78,7 +78,7 @@ class _Line:
     def number(self, what: str = "a number") -> float:
         if self.i < len(self.toks) and NUMBER.match(self.toks[self.i].text):
             self.i += 1
-            return float(self.toks[self.i - 1].text)
+            return float(re.sub(r"(?i)(th|st|nd|rd)$", "", self.toks[self.i - 1].text))
         raise self.fail(what)
 
     def end(self) -> None:
@@ -182,7 +182,6 @@ def parse(text: str, file: str = "<script>") -> Script:
             if not 0 < pct < 100:
                 ln.i -= 1
                 raise ln.fail("a percentile between 0 and 100")
-            ln.opt("percentile", "th", "st", "nd", "rd")
             ln.opt("percentile")
             sex = ln.word("male", "female", "man", "woman")
             sex = {"man": "male", "woman": "female"}.get(sex, sex)

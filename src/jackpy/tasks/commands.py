@@ -166,7 +166,7 @@ class Put(Command):
         y = sim.kb.resolve(self.on or self.in_).obj
         if self.on is not None:
             at = None if self.at is None else sim.kb.world(sim.kb.resolve(self.at))
-            pose, face = resting_pose(sim.kb, x, y, at)
+            pose, face = resting_pose(sim.kb, x, y, at, near=st.palm(sim, self.agent, self.hand))
         else:
             pose, face = container_pose(sim.kb, x, y), "bottom"
         home = st.palm(sim, self.agent, self.hand).copy()

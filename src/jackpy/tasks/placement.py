@@ -37,6 +37,10 @@ def _rotation_between(a: np.ndarray, b: np.ndarray) -> np.ndarray:
     return np.eye(3) + k + k @ k / (1 + c)
 
 
+def _cross2(a: np.ndarray, b: np.ndarray) -> float:
+    return float(a[0] * b[1] - a[1] * b[0])
+
+
 def _hull(points: np.ndarray) -> np.ndarray:
     """Convex hull (counter-clockwise) of 2D points."""
     pts = sorted(set(map(tuple, np.round(points, 9))))
@@ -46,7 +50,7 @@ def _hull(points: np.ndarray) -> np.ndarray:
     def half(ps):
         out = []
         for p in ps:
-            while len(out) >= 2 and np.cross(np.subtract(out[-1], out[-2]), np.subtract(p, out[-2])) <= 0:
+            while len(out) >= 2 and _cross2(np.subtract(out[-1], out[-2]), np.subtract(p, out[-2])) <= 0:
                 out.pop()
             out.append(p)
         return out
@@ -81,8 +85,11 @@ def _xz(T: np.ndarray, pts: np.ndarray) -> np.ndarray:
     return w[:, [0, 2]]
 
 
-def resting_pose(kb: "KnowledgeBase", obj: str, supporter: str, at: np.ndarray | None = None) -> tuple[np.ndarray, str]:
-    """World 4x4 of ``obj`` resting on ``supporter`` and the name of the face it rests on."""
+def resting_pose(kb: "KnowledgeBase", obj: str, supporter: str, at: np.ndarray | None = None,
+                 near: np.ndarray | None = None, margin_m: float = 0.01) -> tuple[np.ndarray, str]:
+    """World 4x4 of ``obj`` resting on ``supporter`` and the name of the face it rests on: at
+    ``at``, else at the point of the surface nearest ``near`` (the agent's hand) with the object
+    ``margin_m`` inside the edge, else at the surface's centre."""
     env = kb.env
     X, Y = env.figures[obj], env.figures[supporter]
     sy = kb.semantics.get(supporter)
@@ -109,6 +116,13 @@ def resting_pose(kb: "KnowledgeBase", obj: str, supporter: str, at: np.ndarray |
     rotated = verts @ R.T
     plane_pt = (Y.location @ np.append(surface["point"], 1.0))[:3]
     centre_local = 0.5 * (rotated.min(0) + rotated.max(0))
+    if at is None and near is not None:
+        inv = np.linalg.inv(Y.location)
+        local = (inv @ np.append(near, 1.0))[:3]
+        half = 0.5 * np.ptp(rotated @ Y.location[:3, :3], axis=0)[[0, 2]] + margin_m
+        lo, hi = surface["polygon"].min(0) + half, surface["polygon"].max(0) - half
+        xz = np.clip(local[[0, 2]], lo, np.maximum(lo, hi))
+        at = (Y.location @ np.array([xz[0], surface["point"][1], xz[1], 1.0]))[:3]
     if at is None:
         poly_w = _xz(Y.location, np.column_stack([surface["polygon"][:, 0], np.full(len(surface["polygon"]), surface["point"][1]), surface["polygon"][:, 1]]))
         at = np.array([poly_w[:, 0].mean(), plane_pt[1], poly_w[:, 1].mean()])

@@ -179,7 +179,8 @@ class Simulation:
         self.holds: dict[tuple[str, str], Any] = {}
         self.placements: list[dict[str, Any]] = []
         self.dt = 1.0 / script.fps
-        self._scale: dict[str, float] = {}
+        self._parent: dict[str, str] = {}
+        self._waiting: dict[str, tuple[set[str], float, str]] = {}
 
     def pace(self, agent: str) -> float:
         a = self.script.agents[agent]
@@ -190,7 +191,7 @@ class Simulation:
         row = fitts.timing(agent, label, limb, amplitude, self.pace(agent), self.config)
         row.start_s = t
         self.rows.append(row)
-        return row.seconds * self._scale.get(agent, 1.0)
+        return row.seconds
 
     # ----- the run ---------------------------------------------------------------------------------
     def run(self, max_time: float) -> Result:
@@ -219,7 +220,8 @@ class Simulation:
                 pending.remove((e, cond))
                 started[e.name] = due
                 if why:
-                    ended[e.name] = (due, "skipped")
+                    self._waiting[e.name] = (set(), due, "skipped")
+                    self._settle(e.name, ended)
                     self.reports.append(Report(e.name, e.action.agent, e.action.text, due, due, "skipped", why, e.origin))
                     continue
                 run = {"entry": e, "start": due, "steps": None, "step": None, "end": due, "checks": {}}
@@ -288,7 +290,6 @@ class Simulation:
                 if run["steps"] is None:
                     run["steps"] = e.action.expand(self)
                     n = sum(isinstance(s, (st.Look, st.Reach, st.Carry)) for s in run["steps"])
-                    self._scale.pop(e.action.agent, None)
                     run["n_timed"] = max(n, 1)
                 if not run["steps"]:
                     self._close(run, t, "done", "", active, ended, pending)
@@ -298,26 +299,42 @@ class Simulation:
                 begin = max(run["end"], run["start"])
                 dur = nxt.begin(self, begin)
                 if e.duration is not None and isinstance(nxt, (st.Look, st.Reach, st.Carry)):
-                    dur = self._explicit(nxt, e.duration / run["n_timed"])
+                    dur = self._explicit(e.duration / run["n_timed"])
                 run["end"] = begin + max(dur, 1e-6)
             except TaskError as err:
                 self._close(run, t, "failed", str(err), active, ended, pending)
                 return
 
-    def _explicit(self, step_: st.Step, dur: float) -> float:
+    def _explicit(self, dur: float) -> float:
         """Replace the Fitts duration of the motion just added by an explicit one."""
         m = self.timeline.motions[-1]
         m.t1 = m.t0 + dur
         return dur
 
     def _close(self, run, t, status, reason, active, ended, pending) -> None:
+        """End an entry; it counts as ended for ``After`` only once the hooks it triggered end."""
         e: Entry = run["entry"]
         end = min(run["end"], t) if status == "failed" else run["end"]
         active.remove(run)
-        ended[e.name] = (end, status)
         self.reports.append(Report(e.name, e.action.agent, e.action.text, run["start"], end, status, reason,
                                    e.origin, run["checks"]))
-        for h in (e.on_success if status == "done" else e.on_failure):
-            pending.append((h, At(end)))
+        hooks = e.on_success if status == "done" else e.on_failure
         for h in (e.on_failure if status == "done" else e.on_success):
             ended[h.name] = (end, "skipped")
+        for h in hooks:
+            pending.append((h, At(end)))
+            self._parent[h.name] = e.name
+        self._waiting[e.name] = ({h.name for h in hooks}, end, status)
+        self._settle(e.name, ended)
+
+    def _settle(self, name: str, ended: dict) -> None:
+        waiting, end, status = self._waiting[name]
+        if waiting:
+            return
+        ended[name] = (end, status)
+        parent = self._parent.pop(name, None)
+        if parent is not None:
+            w, pend, pstatus = self._waiting[parent]
+            w.discard(name)
+            self._waiting[parent] = (w, max(pend, end), pstatus)
+            self._settle(parent, ended)
