@@ -43,8 +43,9 @@ from jackpy.ik.goals.base import Context
 from jackpy.peabody.kinematics import FKResult
 from jackpy.peabody.model import Figure
 
-#: foot points lower than this (m) touch the floor
-CONTACT_HEIGHT = 0.02
+#: foot points within this height (m) of the foot's lowest point touch the floor: the actual
+#: contact patch (a 7 deg toe or heel lift raises the far corners 6-25 mm, out of contact)
+CONTACT_HEIGHT = 0.004
 #: distance (m) of the aim point of a direction goal
 FAR = 1.0e3
 
