@@ -239,6 +239,11 @@ class _Sampler:
                     self.driver_calls += int(missing.size)
                 values[:, slot.cols] = np.where(ok[:, None], table[code], values[:, slot.cols])
             angles[g.name] = theta
+            # a driver may carry a member past its own joint's limits (the shoulder's twist
+            # member is its first angle minus the elevation): such samples are not postures
+            cols = slot.cols
+            ok &= np.all((values[:, cols] >= c.lower[cols] - 1e-12)
+                         & (values[:, cols] <= c.upper[cols] + 1e-12), axis=1)
         return ChainSample(values[ok], {k: v[ok] for k, v in angles.items()})
 
 
