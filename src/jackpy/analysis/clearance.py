@@ -33,6 +33,12 @@ The result is exact (the same triangle-triangle distances fcl computes for whole
 Self-collision skips adjacent segments (joined by a joint) and, with ``ignore_initial``, pairs
 already touching in the posture the checker was built in (their shapes overlap by design, e.g.
 vertebrae, or a thigh and the pelvis); that is the usual "allowed collision matrix".
+
+Contact tolerance (issue 16): a checker built with ``erode=d`` shrinks every segment's mesh by
+moving each vertex ``d`` inwards along its vertex normal (at most 45 % of the segment's smallest
+half-extent, so thin segments such as finger phalanges never turn inside out). A segment of the
+eroded figure collides with an object exactly when the real segment presses more than about ``d``
+into it: touching a surface passes, passing through a desk or a thin partition does not.
 """
 
 from __future__ import annotations
@@ -121,6 +127,23 @@ def _tf(t: np.ndarray):
     return fcl.Transform(t[:3, :3], t[:3, 3])
 
 
+def eroded(mesh: Mesh, depth: float) -> Mesh:
+    """``mesh`` with every vertex moved ``depth`` metres inwards along its vertex normal (at most 45 %
+    of the mesh's smallest half-extent along its principal axes); the outside is told by the sign
+    of the enclosed volume, so either winding works."""
+    v, f = mesh.vertices, mesh.faces
+    if depth <= 0.0 or len(f) == 0:
+        return mesh
+    volume = float(np.einsum("ij,ij->i", v[f[:, 0]], np.cross(v[f[:, 1]], v[f[:, 2]])).sum()) / 6.0
+    centred = v - v.mean(axis=0)
+    axes = np.linalg.svd(centred, full_matrices=False)[2]
+    extent = centred @ axes.T
+    half = float((extent.max(axis=0) - extent.min(axis=0)).min()) / 2.0
+    d = min(depth, 0.45 * half)
+    inward = -1.0 if volume >= 0.0 else 1.0
+    return Mesh(v + inward * d * mesh.vertex_normals(), f.copy())
+
+
 def _sphere(mesh: Mesh) -> tuple[np.ndarray, float]:
     lo, hi = mesh.bounds()
     c = (lo + hi) / 2
@@ -133,10 +156,11 @@ class ClearanceChecker:
 
     Call :meth:`update` after the posture or an object's location changes, then query. Object bodies
     are named like their figure when it has one segment with geometry, ``figure.segment`` otherwise.
+    ``erode`` (metres) shrinks the figure's segments (module docstring: contact tolerance).
     """
 
     def __init__(self, figure: Figure, objects: Sequence[Figure] = (), self_collision: bool = True,
-                 ignore_initial: bool = True, grid_budget: int = 500_000) -> None:
+                 ignore_initial: bool = True, grid_budget: int = 500_000, erode: float = 0.0) -> None:
         if fcl is None:
             raise JackpyError("collision and clearance need the package 'python-fcl' (pip install python-fcl)")
         self.figure = figure
@@ -151,6 +175,7 @@ class ClearanceChecker:
             mesh = seg.psurf.posed_mesh() if seg.psurf is not None else None
             if mesh is None or len(mesh.faces) == 0:
                 continue
+            mesh = eroded(mesh, erode)
             c, r = _sphere(mesh)
             seg_idx.append(kin.segment_index[name])
             centres.append(c)
@@ -262,6 +287,33 @@ class ClearanceChecker:
             if fcl.collide(self._place(s), self._body_obj[b], req, fcl.CollisionResult()):
                 out.append((self.segment_names[s], self.body_names[b]))
         return out
+
+    def line_hits(self, start: np.ndarray, end: np.ndarray, radius: float = 0.01) -> list[tuple[float, str]]:
+        """``(distance from start, body)`` for every object body that a capsule of ``radius`` metres
+        from world point ``start`` to ``end`` touches, nearest first (the distance is that of the
+        first contact point found)."""
+        start, end = np.asarray(start, dtype=float), np.asarray(end, dtype=float)
+        axis = end - start
+        length = float(np.linalg.norm(axis))
+        if length < 1e-9:
+            return []
+        z = axis / length
+        x = np.cross(z, [1.0, 0.0, 0.0] if abs(z[0]) < 0.9 else [0.0, 1.0, 0.0])
+        x /= np.linalg.norm(x)
+        rot = np.column_stack([x, np.cross(z, x), z])
+        capsule = fcl.CollisionObject(fcl.Capsule(radius, length), fcl.Transform(rot, (start + end) / 2))
+        lo, hi = np.minimum(start, end) - radius, np.maximum(start, end) + radius
+        req = fcl.CollisionRequest(num_max_contacts=16, enable_contact=True)
+        out = []
+        for b, name in enumerate(self.body_names):
+            box = self._box_world[b]
+            if np.any(box[0] > hi) or np.any(box[1] < lo):
+                continue
+            res = fcl.CollisionResult()
+            if fcl.collide(capsule, self._body_obj[b], req, res):
+                d = min((float(np.dot(np.asarray(c.pos) - start, z)) for c in res.contacts), default=0.0)
+                out.append((max(d, 0.0), name))
+        return sorted(out)
 
     def _colliding_pairs(self) -> list[tuple[int, int]]:
         if not len(self._pairs):

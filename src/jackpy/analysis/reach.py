@@ -27,12 +27,21 @@ figure stays balanced: the behaviors keep the elbow 10° short of full extension
 weigh the hand against the lean, which leaves a few millimetres. The result carries that
 posture (:class:`Posture`: root, root location, displacements, group angles) for the report's
 picture and strength, the steps taken to get there, and the balance margin.
+
+With ``obstacles`` (the workplace's objects) every mode is collision-aware (issue 16,
+:mod:`jackpy.planning.collision_reach`): a posture counts only when no segment passes into an
+object deeper than the contact tolerance; the arm mode searches several IK starts for such a
+posture, the behavior modes keep the best *free* balanced frame. The result then carries a
+:class:`~jackpy.planning.collision_reach.Verdict`: reached, reached only by touching X, blocked
+by X, or short by N cm.
 """
 
 from __future__ import annotations
 
 import copy
+from collections.abc import Sequence
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 
@@ -100,6 +109,8 @@ class PointReach:
     frames: int = 0
     com_margin: float | None = None
     posture: Posture | None = None
+    #: collision-aware verdict (:class:`jackpy.planning.collision_reach.Verdict`; None without obstacles)
+    verdict: Any = None
 
     @property
     def stepped(self) -> bool:
@@ -112,7 +123,12 @@ class PointReach:
 
     def describe(self) -> str:
         """One line for a report: ``reached (2 mm)`` or ``short by ~10 cm`` (``, 1 step`` added
-        when the figure stepped)."""
+        when the figure stepped); with obstacles the verdict's words (``blocked by partition ...``)."""
+        if self.verdict is not None:
+            text = self.verdict.describe()
+            if self.steps:
+                text += f", {self.steps} step" + ("s" if self.steps > 1 else "")
+            return text
         text = (f"reached ({self.shortfall * 1e3:.0f} mm)" if self.reached
                 else f"short by ~{self.shortfall * 100:.0f} cm")
         if self.steps:
@@ -123,7 +139,8 @@ class PointReach:
 def point_reach(figure: Figure, target: np.ndarray, hand: str = "right", start_joint: str | None = None,
                 tolerance: float = REACH_TOLERANCE, keep_posture: bool = False,
                 max_iterations: int = 300, mode: str = "arm", max_frames: int = 150,
-                ramp: int = 20) -> PointReach:
+                ramp: int = 20, obstacles: Sequence[Figure] | None = None, target_object: str | None = None,
+                contact_tolerance: float | None = None, restarts: int = 16) -> PointReach:
     """Reach for world point ``target`` (metres) with ``hand`` (``"right"``/``"left"``) from the
     figure's current posture, in ``mode`` ``"arm"``, ``"body"`` or ``"step"`` (module docstring).
 
@@ -131,10 +148,21 @@ def point_reach(figure: Figure, target: np.ndarray, hand: str = "right", start_j
     ``max_iterations`` IK iterations. ``"body"``/``"step"``: at most ``max_frames`` behavior frames,
     the goal moved onto the target over ``ramp`` frames, on a copy of the figure (``start_joint``
     and ``max_iterations`` are not used). The figure's posture is restored afterwards unless
-    ``keep_posture`` (then it takes the final posture, root included)."""
+    ``keep_posture`` (then it takes the final posture, root included).
+
+    ``obstacles``: objects (CAD figures) the posture must not pass into deeper than
+    ``contact_tolerance`` (default :data:`jackpy.planning.collision_reach.CONTACT_TOLERANCE`);
+    ``target_object``: the target's own object, which the hand may touch; ``restarts``: extra
+    random IK starts of the arm search."""
     if mode not in MODES:
         raise ValueError(f"reach mode must be one of {MODES}, not {mode!r}")
     target = np.asarray(target, dtype=float).reshape(3)
+    if obstacles is not None:
+        r = _collision_aware_reach(figure, target, hand, start_joint, tolerance, max_iterations, mode,
+                                   max_frames, ramp, list(obstacles), target_object, contact_tolerance, restarts)
+        if keep_posture and r.posture is not None:
+            r.posture.apply(figure)
+        return r
     if mode != "arm":
         r = _behavior_reach(figure, target, hand, mode, tolerance, max_frames, ramp)
         if keep_posture:
@@ -160,8 +188,98 @@ def _anatomy(figure: Figure):
     return human_anatomy(figure) if "right_palm" in figure.segments else synthetic_anatomy(figure)
 
 
+def _collision_aware_reach(figure: Figure, target: np.ndarray, hand: str, start_joint: str | None,
+                           tolerance: float, max_iterations: int, mode: str, max_frames: int, ramp: int,
+                           obstacles: list[Figure], target_object: str | None, contact_tolerance: float | None,
+                           restarts: int) -> PointReach:
+    from jackpy.planning import collision_reach as cr
+
+    tol = cr.CONTACT_TOLERANCE if contact_tolerance is None else contact_tolerance
+    judge = cr.WorkplaceJudge(figure, obstacles, tol)
+    hands = cr.hand_segments(figure, hand)
+    judge.allow_hand_on({figure_parts(figure).hands[hand].segment}, target_object)
+    arm = _free_arm_reach(figure, target, hand, start_joint, tolerance, max_iterations, judge, hands,
+                          target_object, restarts)
+    if mode == "arm" or arm.reached:
+        arm.mode = mode
+        if mode != "arm" and arm.posture is not None:
+            arm.com_margin = _com_margin(figure, arm.posture)
+        return arm
+    # the behaviors only when the arm alone does not reach; then the arm again from their best free
+    # balanced posture (the behaviors hold the elbow short of full extension)
+    r, unconstrained = _behavior_reach(figure, target, hand, mode, tolerance, max_frames, ramp, accept=judge.free)
+    if r.posture is not None:
+        fig = copy.deepcopy(figure)
+        r.posture.apply(fig)
+        polish = _free_arm_reach(fig, target, hand, None, tolerance, 100, judge, hands, target_object, min(restarts, 4))
+        if polish.posture is not None and polish.shortfall < r.shortfall:
+            r.shortfall, r.position, r.posture, r.q = polish.shortfall, polish.position, polish.posture, polish.q
+    if arm.posture is not None and arm.shortfall < r.shortfall:
+        r.shortfall, r.position, r.posture, r.q, r.steps = arm.shortfall, arm.position, arm.posture, arm.q, 0
+    if r.posture is None:
+        r.verdict = cr.Verdict("blocked", r.shortfall, blocked_by=_first_body(judge.penetrations(unconstrained[1])),
+                               tolerance=tol)
+    else:
+        best_any = min((unconstrained[0], unconstrained[1]), (arm.verdict_any[0], arm.verdict_any[1]),
+                       key=lambda t: t[0])
+        r.verdict = cr.judge(judge, r.posture, r.shortfall, r.position, target, tolerance, target_object,
+                             hands, best_any)
+    r.reached = r.verdict.reached
+    return r
+
+
+def _free_arm_reach(figure: Figure, target: np.ndarray, hand: str, start_joint: str | None, tolerance: float,
+                    max_iterations: int, judge, hands: set[str], target_object: str | None,
+                    restarts: int) -> PointReach:
+    """Collision-free arm reach from ``figure``'s posture (the arm search of
+    :func:`jackpy.planning.collision_reach.collision_free_arm_reach`) with its verdict; the
+    result's ``verdict_any`` holds the shortfall and posture reached ignoring collisions."""
+    from jackpy.planning import collision_reach as cr
+
+    tol = judge.tolerance
+    root, location = tuple(figure.root), figure.location.copy()
+    groups = {n: np.array(g.angles, dtype=float) for n, g in figure.groups.items()}
+
+    def posture(q: np.ndarray) -> Posture:
+        return Posture(root, location, q, groups)
+
+    def prefer(q: np.ndarray) -> int:
+        return len(cr.unintended_touches(judge.touches(posture(q)), target_object, hands))
+
+    s = cr.collision_free_arm_reach(figure, target, hand, start_joint, lambda q: judge.free(posture(q)), prefer,
+                                    tolerance, restarts, max_iterations)
+    if s.q is None:  # the start posture itself passes into an object and no IK start is free
+        v = cr.Verdict("blocked", s.any_shortfall, blocked_by=_first_body(judge.penetrations(posture(figure.q))),
+                       tolerance=tol)
+        r = PointReach(target, False, s.any_shortfall, s.position, figure.q.copy(), "blocked", verdict=v)
+    else:
+        p = posture(s.q)
+        v = cr.judge(judge, p, s.shortfall, s.position, target, tolerance, target_object, hands,
+                     (s.any_shortfall, posture(s.any_q)))
+        r = PointReach(target, v.reached, s.shortfall, s.position, s.q.copy(), s.status, posture=p, verdict=v)
+    r.verdict_any = (s.any_shortfall, posture(s.any_q))
+    return r
+
+
+def _com_margin(figure: Figure, posture: Posture) -> float:
+    """Signed distance (m, negative inside) of the centre of mass of ``figure`` in ``posture`` from
+    the support polygon of its feet where they stand."""
+    from jackpy.behaviors import BehaviorLoop
+    from jackpy.behaviors.support import floor
+
+    fig = copy.deepcopy(figure)
+    posture.apply(fig)
+    loop = BehaviorLoop(fig, _anatomy(fig))
+    feet = {s: f.target.copy() for s, f in loop.state.feet.items()}
+    return float(loop.balance_frame_for(feet).margin(floor(fig.centre_of_mass())))
+
+
+def _first_body(pairs: list[tuple[str, str]]) -> str | None:
+    return pairs[0][1] if pairs else None
+
+
 def _behavior_reach(figure: Figure, target: np.ndarray, hand: str, mode: str, tolerance: float,
-                    max_frames: int, ramp: int) -> PointReach:
+                    max_frames: int, ramp: int, accept=None):
     from jackpy.behaviors import BehaviorLoop
     from jackpy.behaviors import manipulation as m
     from jackpy.behaviors.support import floor
@@ -188,6 +306,9 @@ def _behavior_reach(figure: Figure, target: np.ndarray, hand: str, mode: str, to
     best_d, best_feet = float(np.linalg.norm(start - target)), feet_now()
     best_m, best_p, best_pos, best_steps = margin(best_feet), Posture.of(fig), start, 0
     ref_d, improved_at, frames = best_d, 0, 0
+    any_d, any_p = best_d, best_p
+    if accept is not None and not accept(best_p):
+        best_d, best_p = float("inf"), None
     for frames in range(1, max_frames + 1):
         u = min(1.0, frames / max(ramp, 1))
         want = (1.0 - u) * start + u * target
@@ -198,14 +319,18 @@ def _behavior_reach(figure: Figure, target: np.ndarray, hand: str, mode: str, to
         pos = site()
         d = float(np.linalg.norm(pos - target))
         idle = stepping.step is None
-        if idle and d < best_d:
+        if idle and d < max(best_d, any_d):
             q, feet = fig.q, feet_now()
             mg = margin(feet)
             if mg <= 0.0 and np.all(q >= lo) and np.all(q <= hi):
-                best_d, best_m, best_p, best_pos, best_feet = d, mg, Posture.of(fig), pos, feet
-                best_steps = loop.state.steps_taken
-        if best_d < ref_d - STALL_IMPROVEMENT:
-            ref_d, improved_at = best_d, frames
+                p = Posture.of(fig)
+                if d < any_d:
+                    any_d, any_p = d, p
+                if d < best_d and (accept is None or accept(p)):
+                    best_d, best_m, best_p, best_pos, best_feet = d, mg, p, pos, feet
+                    best_steps = loop.state.steps_taken
+        if min(best_d, any_d) < ref_d - STALL_IMPROVEMENT:
+            ref_d, improved_at = min(best_d, any_d), frames
         if u < 1.0 or not idle:
             continue
         if best_d <= tolerance or frames - improved_at >= STALL_FRAMES:
@@ -213,6 +338,9 @@ def _behavior_reach(figure: Figure, target: np.ndarray, hand: str, mode: str, to
     # polish: the behaviors hold the elbow short of full extension (limit springs) and weigh the hand
     # against the lean; the arm alone (body, feet fixed) takes the last millimetres when that keeps
     # the balance
+    if best_p is None:  # with ``accept``: no free balanced frame, not even the start
+        r = PointReach(target, False, any_d, start, fig.q.copy(), "behaviors", mode, 0, frames, None, None)
+        return r, (any_d, any_p)
     best_p.apply(fig)
     problem = ik.Problem(fig)
     problem.add(ik.Position(f"{h.segment}.{h.site}", target, chain=h.start_joint))
@@ -220,6 +348,11 @@ def _behavior_reach(figure: Figure, target: np.ndarray, hand: str, mode: str, to
     pos, q = site(), fig.q
     d, mg = float(np.linalg.norm(pos - target)), margin(best_feet)
     if d < best_d and mg <= 0.0 and np.all(q >= lo) and np.all(q <= hi):
-        best_d, best_m, best_p, best_pos = d, mg, Posture.of(fig), pos
-    return PointReach(target, best_d <= tolerance, best_d, best_pos, best_p.q.copy(), "behaviors", mode,
-                      best_steps, frames, best_m, best_p)
+        p = Posture.of(fig)
+        if d < any_d:
+            any_d, any_p = d, p
+        if accept is None or accept(p):
+            best_d, best_m, best_p, best_pos = d, mg, p, pos
+    r = PointReach(target, best_d <= tolerance, best_d, best_pos, best_p.q.copy(), "behaviors", mode,
+                   best_steps, frames, best_m, best_p)
+    return r if accept is None else (r, (any_d, any_p))

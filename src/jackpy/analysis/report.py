@@ -71,6 +71,8 @@ class Options:
     reach_mode: str = "arm"
     ergonomics: list[str] = field(default_factory=list)
     ergo_task: Any = None
+    #: reach respects the workplace: no segment deeper than this (m) into an object (issue 16)
+    contact_tolerance: float = 0.01
 
 
 def parse_figures(text: str) -> list[tuple[str, float]]:
@@ -116,20 +118,24 @@ def analyse_figure(wp: Workplace, figure: Figure, opts: Options, renderer: Offsc
     reaches = {}
     postures = {}
     for ref in opts.reach:
-        _, p = resolve_target(wp.env, ref)
-        r = point_reach(figure, p, opts.hand, mode=opts.reach_mode)
-        postures[ref] = r.posture
+        obj, p = resolve_target(wp.env, ref)
+        r = point_reach(figure, p, opts.hand, mode=opts.reach_mode, obstacles=list(wp.objects.values()),
+                        target_object=obj.name, contact_tolerance=opts.contact_tolerance)
+        postures[ref] = r.posture if r.posture is not None else neutral
         reaches[ref] = {"reached": r.reached, "shortfall_m": r.shortfall, "text": r.describe(),
                         "target": p.tolist(), "ik_status": r.status, "mode": r.mode, "stepped": r.stepped,
                         "steps": r.steps, "balanced": r.balanced, "com_margin_m": r.com_margin,
-                        "hand_position": r.position.tolist()}
+                        "hand_position": r.position.tolist(), **r.verdict.to_dict()}
     res["reach"] = reaches
     chain = Chain.to_site(figure, hand.start_joint, hand.segment, hand.site)
     ws = reachable_workspace(chain, opts.resolution)
+    removed = ws.remove_solids(_object_meshes(wp))
     sites = {ref: resolve_target(wp.env, ref)[1] for ref in opts.reach}
+    # a site counts inside the workspace only when the collision-aware reach reached it as well
     res["workspace"] = {"resolution": opts.resolution, "volume_m3": ws.volume(), "samples": ws.samples,
-                        "converged": ws.converged,
-                        "sites": {n: {"inside": i, "distance_m": d} for n, (i, d) in ws.classify(sites).items()}}
+                        "converged": ws.converged, "voxels_inside_objects_removed": removed,
+                        "sites": {n: {"inside": i and reaches[n]["reached"], "inside_envelope": i, "distance_m": d}
+                                  for n, (i, d) in ws.classify(sites).items()}}
     # --- view ---------------------------------------------------------------------------------
     ev = eye_view(figure)
     views = {}
@@ -189,6 +195,18 @@ def analyse_figure(wp: Workplace, figure: Figure, opts: Options, renderer: Offsc
         _ergonomics_pictures(renderer, wp, figure, assessed, pictures, tag)
     neutral.apply(figure)
     return res
+
+
+def _object_meshes(wp: Workplace) -> list:
+    """Every workplace object's meshes in world coordinates."""
+    out = []
+    for obj in wp.objects.values():
+        world = obj.world_transforms()
+        for name, seg in obj.segments.items():
+            m = seg.psurf.posed_mesh() if seg.psurf is not None else None
+            if m is not None and len(m.faces):
+                out.append(m.transformed(world[name]))
+    return out
 
 
 def _ergonomics(figure: Figure, opts: Options) -> dict[str, Any]:
@@ -291,7 +309,7 @@ def write_report(wp: Workplace, opts: Options, out_dir: str | Path,
         renderer = None
     pictures: dict[str, bytes] = {}
     results = {"scene": str(wp.path) if wp.path else None, "load_kg": opts.load_kg, "hand": opts.hand,
-               "reach_mode": opts.reach_mode, "figures": []}
+               "reach_mode": opts.reach_mode, "contact_tolerance_m": opts.contact_tolerance, "figures": []}
     try:
         for k, (sex, pct) in enumerate(opts.figures):
             if progress is not None:
@@ -404,7 +422,9 @@ def _html(results: dict[str, Any], pictures: dict[str, bytes]) -> str:
              ".bad{color:#b00}.good{color:#070}</style></head><body>"),
              (f"<h1>Workplace report</h1><p>Scene: {e(str(results['scene']))}; hand: {e(results['hand'])}; "
              f"load in the hand: {results['load_kg']:g} kg; reach: "
-             f"{e(REACH_MODE_TEXT.get(results.get('reach_mode', 'arm'), ''))}.</p>")]
+             f"{e(REACH_MODE_TEXT.get(results.get('reach_mode', 'arm'), ''))}; a target counts as reached only "
+             f"with no body segment more than {1000 * results.get('contact_tolerance_m', 0.01):.0f} mm into "
+             f"any object (the palm may meet the target's own object).</p>")]
     for r in results["figures"]:
         t = r["tag"]
         parts.append(f"<h2>{e(r['sex'])}, {r['percentile']:g}th percentile (stature {r['stature_m'] * 100:.1f} cm)</h2>")

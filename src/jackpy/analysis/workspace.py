@@ -321,6 +321,28 @@ class Workspace:
         d, _ = cKDTree(self.origin + (cells + 0.5) * self.cell).query(pts)
         return np.where(self.contains(pts), 0.0, d)
 
+    def remove_solids(self, meshes: list[Mesh]) -> int:
+        """Unmark the voxels whose centre lies inside one of the closed world ``meshes`` (the
+        workplace's objects: a hand there would be inside a desk, issue 16); meshes that do not
+        enclose a volume are skipped. Returns the count of voxels unmarked."""
+        import trimesh
+
+        cells = np.argwhere(self.occupied)
+        if not len(cells):
+            return 0
+        centres = self.origin + (cells + 0.5) * self.cell
+        inside = np.zeros(len(cells), dtype=bool)
+        for m in meshes:
+            tm = trimesh.Trimesh(m.vertices, m.faces, process=True)
+            if not tm.is_watertight:
+                continue
+            lo, hi = tm.bounds
+            near = np.all((centres >= lo) & (centres <= hi), axis=1) & ~inside
+            if np.any(near):
+                inside[np.flatnonzero(near)[tm.contains(centres[near])]] = True
+        self.occupied[tuple(cells[inside].T)] = False
+        return int(inside.sum())
+
     def classify(self, sites: dict[str, np.ndarray]) -> dict[str, tuple[bool, float]]:
         """``name -> (inside, distance to the workspace in metres)`` for named world points."""
         names = list(sites)

@@ -18,6 +18,9 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--reach-mode", choices=("arm", "body", "step"), default="arm",
                    help="point reach with the arm only (default), the whole body with the feet planted "
                         "(bends and shifts its weight, balanced), or the whole body allowed to step")
+    p.add_argument("--contact-tolerance", type=float, default=10.0, metavar="MM",
+                   help="a target counts as reached only with no body segment deeper than this into any "
+                        "object (mm, default 10: touching a surface is allowed, passing through it is not)")
     p.add_argument("--resolution", type=int, default=48, help="workspace voxels per axis (default 48)")
     p.add_argument("--ergonomics", default=None, metavar="M[,M...]",
                    help="ergonomic assessments of the strength posture: rula, reba, owas, niosh, lowback, capable "
@@ -42,8 +45,9 @@ def run(args: argparse.Namespace) -> int:
     opts = Options(parse_figures(args.figures), _list(args.reach, wp.plan.reach), _list(args.view, wp.plan.view),
                    wp.plan.load_kg if args.load is None else args.load, args.hand or wp.plan.hand, args.resolution,
                    args.reach_mode)
-    if opts.load_kg < 0 or opts.resolution < 4:
-        raise JackpyError("--load must be >= 0 and --resolution >= 4")
+    if opts.load_kg < 0 or opts.resolution < 4 or args.contact_tolerance < 0:
+        raise JackpyError("--load and --contact-tolerance must be >= 0 and --resolution >= 4")
+    opts.contact_tolerance = args.contact_tolerance / 1000.0
     if args.ergonomics is not None:  # bad methods or task parameters fail before any work
         from jackpy.ergonomics import parse_methods
         from jackpy.ergonomics.inputs import load_task
