@@ -1,0 +1,281 @@
+"""Walking any planar footstep sequence ([SH5] §5.2.3; digest §2.8.4): the gait profiles of
+:mod:`.walk_gait` laid onto the footsteps.
+
+- **footsteps** ``Σ = {σ_i}``: ankle floor point ``(x, z)``, heading ``psi`` and side; σ_0, σ_1
+  are the standing feet, each later σ_j is reached by swinging that foot from its previous one;
+- **timing**: step j (heel strike of σ_{j-1} to that of σ_j) lasts ``1/sf``; double support is
+  the first ``2·DOUBLE_SUPPORT`` of it, then the swing;
+- **stance foot**: rolls about its heel to foot-flat, stays flat, rolls about the ball of the foot
+  to toe-off (the toes stay on the floor);
+- **swing ankle**: top view on the book's quadratic Bézier D1 (ankle at toe-off), D2 (the stance
+  ankle mirrored across the walking line), D3 (ankle at heel strike); on a straight path the three
+  are collinear and the curve is the straight 1-D travel; height from the 1-D profile;
+- **centre site** (pelvis centre): a C¹ cubic Hermite from the mid-foot point at one heel strike to
+  the next, tangents along the mean foot heading with the chord as magnitude (a straight, uniform
+  path gives the straight line at uniform speed), swaying toward the stance foot; the pelvis faces
+  along the path tangent and stays upright; its height is Boulic's profile, lowered where a leg
+  would have to stretch beyond ``MAX_LEG`` of its length.
+
+All positions world metres, y up.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from jackpy.locomotion.walk_gait import (DOUBLE_SUPPORT, FOOT_FLAT, HEEL_OFF, MAX_LEG, PITCH_HS, PITCH_TO,
+                                         SIDES, START_TIME, STOP_TIME, GaitParams, foot_transform,
+                                         pelvis_drop, rot_y, smooth, swing_lift, swing_pitch)
+
+
+@dataclass
+class Footstep:
+    """One foot placement: ankle floor point (m), heading (rad), ``"left"``/``"right"``."""
+
+    x: float
+    z: float
+    psi: float
+    side: str
+
+    @property
+    def point(self) -> np.ndarray:
+        return np.array([self.x, self.z])
+
+
+@dataclass
+class FrameTargets:
+    """What the solver must achieve at one frame (world, m, rad)."""
+
+    pelvis: np.ndarray  # 4x4 of the pelvis centre (root) frame
+    feet: dict[str, np.ndarray]  # side -> 4x4 floor frame of the foot
+    toes_flat: dict[str, bool]
+    arm: dict[str, float]  # side -> shoulder swing (rad, + forward)
+    phase: dict[str, str]  # side -> "heel" | "flat" | "ball" | "swing"
+
+
+def landing_times(steps: list[Footstep], p: GaitParams) -> np.ndarray:
+    """Heel-strike time of every footstep (σ_0, σ_1: 0, standing)."""
+    t = np.zeros(len(steps))
+    for j in range(2, len(steps)):
+        t[j] = (START_TIME if j == 2 else t[j - 1]) + p.step_time
+    return t
+
+
+def duration(steps: list[Footstep], p: GaitParams) -> float:
+    land = landing_times(steps, p)
+    return float(land[-1] + STOP_TIME) if len(steps) > 2 else START_TIME + STOP_TIME
+
+
+def _ankle(p: GaitParams, T: np.ndarray, side: str) -> np.ndarray:
+    a = p.foot.ankle * np.array([-1.0 if side == "right" else 1.0, 1.0, 1.0])
+    return T[:3, :3] @ a + T[:3, 3]
+
+
+def _angle_lerp(a: float, b: float, s: float) -> float:
+    d = (b - a + np.pi) % (2.0 * np.pi) - np.pi
+    return a + s * d
+
+
+class Walk:
+    """Targets of a walk over ``steps`` for a figure with gait ``p``; :meth:`at` gives one time."""
+
+    def __init__(self, steps: list[Footstep], p: GaitParams) -> None:
+        if len(steps) < 2 or {steps[0].side, steps[1].side} != set(SIDES):
+            raise ValueError("a walk starts from two standing footsteps, one left and one right")
+        for j in range(2, len(steps)):
+            if steps[j].side == steps[j - 1].side:
+                raise ValueError(f"footstep {j} is on the same side as footstep {j - 1}")
+        self.steps, self.p = steps, p
+        self.land = landing_times(steps, p)
+        self.duration = duration(steps, p)
+        self.by_side = {s: [j for j in range(len(steps)) if steps[j].side == s] for s in SIDES}
+        # centre-site keys at the heel strikes: midpoint of the two feet
+        self.keys = [0.5 * (steps[0].point + steps[1].point)]
+        self.key_dir = [_angle_lerp(steps[0].psi, steps[1].psi, 0.5)]
+        for j in range(2, len(steps)):
+            self.keys.append(0.5 * (steps[j - 1].point + steps[j].point))
+            self.key_dir.append(_angle_lerp(steps[j - 1].psi, steps[j].psi, 0.5))
+
+    # -- feet ------------------------------------------------------------------------------
+    def _flat(self, j: int, pitch: float) -> np.ndarray:
+        s = self.steps[j]
+        return foot_transform(self.p, s.x, s.z, s.psi, pitch, s.side)
+
+    def foot(self, side: str, t: float) -> tuple[np.ndarray, bool, str]:
+        """The foot's floor frame at ``t``, whether its toes are on the floor, and its phase."""
+        p, land, idx = self.p, self.land, self.by_side[side]
+        cur = max(j for j in idx if land[j] <= t or j < 2)
+        nxt = next((j for j in idx if j > cur), None)
+        cycle = 2.0 * p.step_time
+        if nxt is None:
+            return self._stance(cur, t, cycle, None, None)
+        t_s = START_TIME if nxt == 2 else land[nxt - 1]  # the other foot's heel strike
+        t_to = t_s + 2.0 * DOUBLE_SUPPORT * (land[nxt] - t_s)
+        if t < t_to:
+            return self._stance(cur, t, cycle, t_s, t_to)
+        u = (t - t_to) / (land[nxt] - t_to)
+        return self._swing(cur, nxt, u, side), False, "swing"
+
+    def _stance(self, cur, t, cycle, t_s, t_to):
+        dt = t - self.land[cur]
+        if cur >= 2 and dt < FOOT_FLAT * cycle:
+            return self._flat(cur, self._hs_pitch(cur) * (1.0 - float(smooth(dt / (FOOT_FLAT * cycle))))), False, "heel"
+        if t_to is None:
+            return self._flat(cur, 0.0), True, "flat"
+        t_ho = self.land[cur] + HEEL_OFF * cycle if cur >= 2 else t_s
+        t_ho = min(max(t_ho, self.land[cur] + FOOT_FLAT * cycle if cur >= 2 else t_ho), t_to)
+        if t <= t_ho:
+            return self._flat(cur, 0.0), True, "flat"
+        u = (t - t_ho) / (t_to - t_ho)
+        return self._flat(cur, self._to_pitch(cur) * float(smooth(u))), True, "ball"
+
+    def _stride(self, j: int) -> float:
+        """Fraction of a full stride (2 step lengths) that footstep j's foot travels to land there."""
+        prev = max((k for k in self.by_side[self.steps[j].side] if k < j), default=None)
+        if prev is None:
+            return 0.0
+        d = float(np.linalg.norm(self.steps[j].point - self.steps[prev].point))
+        return min(1.0, d / (2.0 * self.p.step_length))
+
+    def _hs_pitch(self, j: int) -> float:
+        """Heel-strike pitch of footstep j: full after a full stride, flatter after short ones."""
+        return PITCH_HS * self._stride(j)
+
+    def _to_pitch(self, cur: int) -> float:
+        """Toe-off pitch leaving footstep ``cur``: with the length of the stride that follows."""
+        nxt = next((k for k in self.by_side[self.steps[cur].side] if k > cur), None)
+        return 0.0 if nxt is None else PITCH_TO * self._stride(nxt)
+
+    def _swing(self, cur: int, nxt: int, u: float, side: str) -> np.ndarray:
+        p, st = self.p, self.steps
+        p0 = self._to_pitch(cur)
+        p1 = self._hs_pitch(nxt)
+        T0, T1 = self._flat(cur, p0), self._flat(nxt, p1)
+        d1, d3 = _ankle(p, T0, side), _ankle(p, T1, side)
+        # stance foot: the other foot's latest footstep; mirror its ankle across the walking line
+        other = nxt - 1
+        a_st = _ankle(p, self._flat(other, 0.0), st[other].side)
+        mid = 0.5 * (st[cur].point + st[nxt].point)
+        line = np.array([np.sin(st[other].psi), np.cos(st[other].psi)])
+        lateral = np.array([line[1], -line[0]])
+        off = float(np.dot(a_st[[0, 2]] - mid, lateral))
+        d2 = a_st[[0, 2]] - 2.0 * off * lateral
+        s = float(smooth(u))
+        top = (1 - s) ** 2 * d1[[0, 2]] + 2 * s * (1 - s) * d2 + s * s * d3[[0, 2]]
+        y = d1[1] + s * (d3[1] - d1[1]) + swing_lift(p, p0, p1) * np.sin(np.pi * u)
+        pitch = swing_pitch(u, p0, p1)
+        psi = _angle_lerp(st[cur].psi, st[nxt].psi, s)
+        T = foot_transform(p, 0.0, 0.0, psi, pitch, side)
+        a = _ankle(p, T, side)
+        T[:3, 3] += np.array([top[0], y, top[1]]) - a
+        return T
+
+    # -- pelvis ----------------------------------------------------------------------------
+    def _centre(self, t: float) -> tuple[np.ndarray, float, float | None, str, float]:
+        """Centre-site floor point, yaw, cycle fraction (None standing), stance side, sway."""
+        st, land, n = self.steps, self.land, len(self.steps)
+        if n == 2 or t < START_TIME:
+            u = t / START_TIME
+            side = st[2].side if n > 2 else st[1].side
+            stance = "right" if side == "left" else "left"
+            return self.keys[0], self.key_dir[0], None, stance, float(smooth(u)) if n > 2 else 0.0
+        if t >= land[-1]:
+            u = min(1.0, (t - land[-1]) / STOP_TIME)
+            return self.keys[-1], self.key_dir[-1], None, st[-1].side, 0.0
+        j = int(np.searchsorted(land[2:], t, side="right")) + 2  # footstep j is swinging in
+        t0 = START_TIME if j == 2 else land[j - 1]
+        u = (t - t0) / (land[j] - t0)
+        c0, c1 = self.keys[j - 2], self.keys[j - 1]
+        a0, a1 = self.key_dir[j - 2], self.key_dir[j - 1]
+        pt, yaw = _hermite_at_arc(c0, c1, a0, a1, u)
+        stance = st[j - 1].side
+        # from the weight shift (full sway) on, toward the stance foot, back to the middle at the end
+        sway = float(np.cos(0.5 * np.pi * u)) if j == 2 else float(np.sin(np.pi * u))
+        return pt, yaw, 0.5 * u, stance, sway
+
+    def pelvis(self, t: float, feet: dict[str, np.ndarray], phase: dict[str, str]) -> np.ndarray:
+        p = self.p
+        pt, yaw, cyc, stance, sway = self._centre(t)
+        lat = np.array([np.cos(yaw), -np.sin(yaw)])  # left of the heading, top view (x, z)
+        sgn = 1.0 if stance == "left" else -1.0
+        # the stop: sway eases out after the last heel strike
+        if cyc is None and t >= self.land[-1] and len(self.steps) > 2:
+            sway = 0.0
+        pt = pt + sgn * p.sway * sway * lat
+        stand = p.hip_height - 0.003 * p.hip_height
+        if cyc is None:
+            if t < START_TIME:
+                h = stand + (stand + pelvis_drop(p, 0.0) - stand) * float(smooth(t / START_TIME))
+            else:
+                u = min(1.0, (t - self.land[-1]) / STOP_TIME) if len(self.steps) > 2 else 1.0
+                h = stand + pelvis_drop(p, 0.0) * (1.0 - float(smooth(u)))
+        else:
+            h = stand + pelvis_drop(p, cyc)
+        # reach: every foot that is not swinging must be reachable from its hip
+        centre = np.array([pt[0], h, pt[1]])
+        for side in SIDES:
+            if phase[side] == "swing":
+                continue
+            hip_off = (p.hip_half_width if side == "left" else -p.hip_half_width)
+            hip = centre + np.array([lat[0], 0.0, lat[1]]) * hip_off
+            a = _ankle(p, feet[side], side)
+            dh = np.hypot(hip[0] - a[0], hip[2] - a[2])
+            reach = MAX_LEG * p.leg_length
+            top = a[1] + np.sqrt(max(reach * reach - dh * dh, 0.0))
+            centre[1] = min(centre[1], top)
+        T = np.eye(4)
+        T[:3, :3] = rot_y(yaw)
+        T[:3, 3] = centre
+        return T
+
+    def arms(self, t: float) -> dict[str, float]:
+        """Shoulder swing: each arm forward while the opposite leg swings forward."""
+        st, land, n = self.steps, self.land, len(self.steps)
+        if n <= 2 or t <= START_TIME or t >= land[-1]:
+            return {"left": 0.0, "right": 0.0}
+        j = int(np.searchsorted(land[2:], t, side="right")) + 2
+        t0 = START_TIME if j == 2 else land[j - 1]
+        u = (t - t0) / (land[j] - t0)
+        sign = 1.0 if st[j].side == "left" else -1.0  # +1: right arm swinging forward
+        val = -sign + 2.0 * sign * float(smooth(u))
+        if j == 2:
+            val = sign * float(smooth(u))
+        if j == n - 1:
+            val = -sign * (1.0 - float(smooth(u)))
+        amp = self.p.arm_swing
+        return {"left": -val * amp, "right": val * amp}
+
+    def at(self, t: float) -> FrameTargets:
+        feet, toes, phase = {}, {}, {}
+        for side in SIDES:
+            feet[side], toes[side], phase[side] = self.foot(side, t)
+        return FrameTargets(self.pelvis(t, feet, phase), feet, toes, self.arms(t), phase)
+
+    def frames(self, fps: float) -> list[FrameTargets]:
+        n = int(np.floor(self.duration * fps + 1e-9)) + 1
+        return [self.at(i / fps) for i in range(n)]
+
+
+def _hermite(c0, c1, a0, a1, s):
+    m = float(np.linalg.norm(c1 - c0))
+    t0 = m * np.array([np.sin(a0), np.cos(a0)])
+    t1 = m * np.array([np.sin(a1), np.cos(a1)])
+    h00, h10, h01, h11 = 2 * s**3 - 3 * s**2 + 1, s**3 - 2 * s**2 + s, -2 * s**3 + 3 * s**2, s**3 - s**2
+    d00, d10, d01, d11 = 6 * s**2 - 6 * s, 3 * s**2 - 4 * s + 1, -6 * s**2 + 6 * s, 3 * s**2 - 2 * s
+    pt = np.outer(h00, c0) + np.outer(h10, t0) + np.outer(h01, c1) + np.outer(h11, t1)
+    dv = np.outer(d00, c0) + np.outer(d10, t0) + np.outer(d01, c1) + np.outer(d11, t1)
+    return pt, dv
+
+
+def _hermite_at_arc(c0, c1, a0, a1, u: float) -> tuple[np.ndarray, float]:
+    """Point and tangent yaw at arc-length fraction ``u`` of the centre-site Hermite."""
+    if np.linalg.norm(c1 - c0) < 1e-9:
+        return c0.copy(), _angle_lerp(a0, a1, u)
+    s = np.linspace(0.0, 1.0, 65)
+    pts, _ = _hermite(c0, c1, a0, a1, s)
+    cum = np.concatenate([[0.0], np.cumsum(np.linalg.norm(np.diff(pts, axis=0), axis=1))])
+    si = float(np.interp(u * cum[-1], cum, s))
+    pt, dv = _hermite(c0, c1, a0, a1, np.array([si]))
+    return pt[0], float(np.arctan2(dv[0, 0], dv[0, 1]))
