@@ -41,7 +41,9 @@ ARM_SWING = np.radians(16.0)
 START_TIME = 0.35
 STOP_TIME = 0.45
 #: the legs may stretch to this fraction of their standing hip-ankle length
-MAX_LEG = 0.985
+MAX_LEG = 0.995
+#: the most the heel is raised to keep the ankle within reach (rad)
+MAX_PITCH = np.radians(55.0)
 SIDES = ("left", "right")
 
 

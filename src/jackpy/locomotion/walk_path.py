@@ -25,7 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from jackpy.locomotion.walk_gait import (DOUBLE_SUPPORT, FOOT_FLAT, HEEL_OFF, MAX_LEG, PITCH_HS, PITCH_TO,
+from jackpy.locomotion.walk_gait import (DOUBLE_SUPPORT, FOOT_FLAT, HEEL_OFF, MAX_LEG, MAX_PITCH, PITCH_HS, PITCH_TO,
                                          SIDES, START_TIME, STOP_TIME, GaitParams, foot_transform,
                                          pelvis_drop, rot_y, smooth, swing_lift, swing_pitch)
 
@@ -50,7 +50,7 @@ class FrameTargets:
 
     pelvis: np.ndarray  # 4x4 of the pelvis centre (root) frame
     feet: dict[str, np.ndarray]  # side -> 4x4 floor frame of the foot
-    toes_flat: dict[str, bool]
+    toes_flat: dict[str, float]  # 1: toes flat (bent at the ball joint), 0: straight with the foot
     arm: dict[str, float]  # side -> shoulder swing (rad, + forward)
     phase: dict[str, str]  # side -> "heel" | "flat" | "ball" | "swing"
 
@@ -76,6 +76,10 @@ def _ankle(p: GaitParams, T: np.ndarray, side: str) -> np.ndarray:
 def _angle_lerp(a: float, b: float, s: float) -> float:
     d = (b - a + np.pi) % (2.0 * np.pi) - np.pi
     return a + s * d
+
+
+#: fraction of the swing over which the toes, bent at toe-off, straighten
+TOES_RELEASE = 0.3
 
 
 class Walk:
@@ -116,20 +120,21 @@ class Walk:
         if t < t_to:
             return self._stance(cur, t, cycle, t_s, t_to)
         u = (t - t_to) / (land[nxt] - t_to)
-        return self._swing(cur, nxt, u, side), False, "swing"
+        # the toes straighten over the first TOES_RELEASE of the swing
+        return self._swing(cur, nxt, u, side), 1.0 - float(smooth(u / TOES_RELEASE)), "swing"
 
     def _stance(self, cur, t, cycle, t_s, t_to):
         dt = t - self.land[cur]
         if cur >= 2 and dt < FOOT_FLAT * cycle:
-            return self._flat(cur, self._hs_pitch(cur) * (1.0 - float(smooth(dt / (FOOT_FLAT * cycle))))), False, "heel"
+            return self._flat(cur, self._hs_pitch(cur) * (1.0 - float(smooth(dt / (FOOT_FLAT * cycle))))), 0.0, "heel"
         if t_to is None:
-            return self._flat(cur, 0.0), True, "flat"
+            return self._flat(cur, 0.0), 1.0, "flat"
         t_ho = self.land[cur] + HEEL_OFF * cycle if cur >= 2 else t_s
         t_ho = min(max(t_ho, self.land[cur] + FOOT_FLAT * cycle if cur >= 2 else t_ho), t_to)
         if t <= t_ho:
-            return self._flat(cur, 0.0), True, "flat"
+            return self._flat(cur, 0.0), 1.0, "flat"
         u = (t - t_ho) / (t_to - t_ho)
-        return self._flat(cur, self._to_pitch(cur) * float(smooth(u))), True, "ball"
+        return self._flat(cur, self._to_pitch(cur) * float(smooth(u))), 1.0, "ball"
 
     def _stride(self, j: int) -> float:
         """Fraction of a full stride (2 step lengths) that footstep j's foot travels to land there."""
@@ -210,25 +215,50 @@ class Walk:
                 h = stand + (stand + pelvis_drop(p, 0.0) - stand) * float(smooth(t / START_TIME))
             else:
                 u = min(1.0, (t - self.land[-1]) / STOP_TIME) if len(self.steps) > 2 else 1.0
-                h = stand + pelvis_drop(p, 0.0) * (1.0 - float(smooth(u)))
+                k = self._stride(len(self.steps) - 1) if len(self.steps) > 2 else 0.0
+                h = stand + k * pelvis_drop(p, 0.0) * (1.0 - float(smooth(u)))
         else:
-            h = stand + pelvis_drop(p, cyc)
-        # reach: every foot that is not swinging must be reachable from its hip
+            # short steps (the first and the last) dip less: Boulic's offset times the stride fraction
+            j = int(np.searchsorted(self.land[2:], t, side="right")) + 2
+            k = min(self._stride(j), max(self._stride(j - 1), 0.5)) if j - 1 >= 2 else self._stride(j)
+            h = stand + k * pelvis_drop(p, cyc)
         centre = np.array([pt[0], h, pt[1]])
         for side in SIDES:
-            if phase[side] == "swing":
-                continue
-            hip_off = (p.hip_half_width if side == "left" else -p.hip_half_width)
-            hip = centre + np.array([lat[0], 0.0, lat[1]]) * hip_off
-            a = _ankle(p, feet[side], side)
-            dh = np.hypot(hip[0] - a[0], hip[2] - a[2])
-            reach = MAX_LEG * p.leg_length
-            top = a[1] + np.sqrt(max(reach * reach - dh * dh, 0.0))
-            centre[1] = min(centre[1], top)
+            if phase[side] != "swing":
+                centre[1] = min(centre[1], self._reach_top(centre, yaw, side, feet[side]))
         T = np.eye(4)
         T[:3, :3] = rot_y(yaw)
         T[:3, 3] = centre
         return T
+
+    def _hip(self, centre: np.ndarray, yaw: float, side: str) -> np.ndarray:
+        off = self.p.hip_half_width if side == "left" else -self.p.hip_half_width
+        return centre + off * np.array([np.cos(yaw), 0.0, -np.sin(yaw)])
+
+    def _reach_top(self, centre: np.ndarray, yaw: float, side: str, T: np.ndarray) -> float:
+        """Highest pelvis centre from which the hip still reaches the foot's ankle."""
+        hip, a = self._hip(centre, yaw, side), _ankle(self.p, T, side)
+        reach = MAX_LEG * self.p.leg_length
+        dh = np.hypot(hip[0] - a[0], hip[2] - a[2])
+        return float(a[1] + np.sqrt(max(reach * reach - dh * dh, 0.0)))
+
+    def _lift_heel(self, j: int, T: np.ndarray, pelvis: np.ndarray, side: str) -> tuple[np.ndarray, float]:
+        """The book's rule: raise the heel (roll about the ball joint) until the ankle is within
+        reach of the hip; returns the foot's frame and its pitch."""
+        yaw = float(np.arctan2(pelvis[0, 2], pelvis[2, 2]))
+        pitch0 = float(np.arcsin(np.clip(-T[1, 2], -1.0, 1.0)))
+        if pitch0 < 0.0 or self._reach_top(pelvis[:3, 3], yaw, side, T) >= pelvis[1, 3]:
+            return T, pitch0
+        lo, hi = pitch0, MAX_PITCH
+        if self._reach_top(pelvis[:3, 3], yaw, side, self._flat(j, hi)) < pelvis[1, 3]:
+            return self._flat(j, hi), hi
+        for _ in range(30):
+            mid = 0.5 * (lo + hi)
+            if self._reach_top(pelvis[:3, 3], yaw, side, self._flat(j, mid)) >= pelvis[1, 3]:
+                hi = mid
+            else:
+                lo = mid
+        return self._flat(j, hi), hi
 
     def arms(self, t: float) -> dict[str, float]:
         """Shoulder swing: each arm forward while the opposite leg swings forward."""
@@ -251,7 +281,20 @@ class Walk:
         feet, toes, phase = {}, {}, {}
         for side in SIDES:
             feet[side], toes[side], phase[side] = self.foot(side, t)
-        return FrameTargets(self.pelvis(t, feet, phase), feet, toes, self.arms(t), phase)
+        pel = self.pelvis(t, {s: feet[s] for s in SIDES}, {s: ("swing" if phase[s] != "heel" else "heel")
+                                                           for s in SIDES})
+        yaw = float(np.arctan2(pel[0, 2], pel[2, 2]))
+        for side in SIDES:
+            if phase[side] in ("flat", "ball"):
+                j = self._standing_on(side, t)
+                feet[side], pitch = self._lift_heel(j, feet[side], pel, side)
+                if pitch > 1e-9:
+                    phase[side] = "ball"
+                pel[1, 3] = min(pel[1, 3], self._reach_top(pel[:3, 3], yaw, side, feet[side]))
+        return FrameTargets(pel, feet, toes, self.arms(t), phase)
+
+    def _standing_on(self, side: str, t: float) -> int:
+        return max(j for j in self.by_side[side] if self.land[j] <= t or j < 2)
 
     def frames(self, fps: float) -> list[FrameTargets]:
         n = int(np.floor(self.duration * fps + 1e-9)) + 1

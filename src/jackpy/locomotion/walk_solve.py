@@ -56,7 +56,7 @@ class WalkSolver:
         for s in SIDES:
             self.goals[f"{s}_foot"] = self.legs.add(PositionOrientation(f"{s}_foot.ball", np.eye(4), weight=100.0, position_weight=0.8), 0)
             self.goals[f"{s}_tip"] = self.legs.add(Position(f"{s}_toes.tip", np.zeros(3), weight=10.0), 0)
-            self.goals[f"{s}_knee"] = self.legs.add(Position(f"{s}_shank.base", np.zeros(3), weight=0.02), 0)
+            self.goals[f"{s}_knee"] = self.legs.add(Position(f"{s}_shank.base", np.zeros(3), weight=0.005), 0)
         self.legs.lock(*sorted(set(figure.joints) - leg), *sorted(groups))
         self.arms = Problem(figure)
         for s in SIDES:
@@ -85,8 +85,9 @@ class WalkSolver:
             T = tg.feet[s]
             g[f"{s}_foot"].target = T @ self.ball_rel[s]
             tip = (T @ self.tips[s])[:3]
-            if tg.toes_flat[s]:
-                tip = toes_flat_tip(self.p, T, s)
+            bend = tg.toes_flat[s]
+            if bend > 0.0:
+                tip = bend * toes_flat_tip(self.p, T, s) + (1.0 - bend) * tip
             g[f"{s}_tip"].target = tip.copy()
             hip = fig.site_world("pelvis", f"{s}_hip")[:3, 3]
             ank = T[:3, 3]
