@@ -1,5 +1,6 @@
 """Strength table: every DOF, two directions, sex and percentile order."""
 
+import numpy as np
 import pytest
 
 from jackpy.body.strength import strength_table, torque
@@ -18,3 +19,74 @@ def test_sex_and_percentile_order(female5, male95):
     assert torque("knee", "flexion", "male", 5)[0] < torque("knee", "flexion", "male", 50)[0] \
         < torque("knee", "flexion", "male", 95)[0]
     assert torque("elbow", "flexion", "female", 50)[1] == pytest.approx(0.56 * 70.0)
+
+
+# Anderson, Madigan & Nussbaum (2007) J. Biomech. 40:3105-3113, Table 3, age 18-25, typed here from
+# the table (independently of strength_posture.csv): (joint, side, sex) -> (c1, c1_sd, c2, c3).
+ANDERSON_2007 = {
+    ("hip", "lower", "male"): (0.161, 0.049, 0.958, 0.932),
+    ("hip", "upper", "female"): (0.127, 0.033, 0.650, -0.350),
+    ("knee", "lower", "male"): (0.163, 0.040, 1.258, 1.133),
+    ("knee", "upper", "female"): (0.080, 0.015, 0.873, 0.635),
+    ("ankle", "lower", "female"): (0.104, 0.034, 1.399, 0.424),
+    ("ankle", "upper", "male"): (0.033, 0.005, 1.510, -0.187),
+}
+#: ANSUR II medians (population_ansur2.csv): sex -> (mass kg, stature m)
+MEDIAN = {"male": (84.36567475048071, 1.75621), "female": (66.88499194679233, 1.62847)}
+
+
+@pytest.mark.parametrize("key", sorted(ANDERSON_2007))
+def test_fifth_percentile_is_mean_minus_1645_sd(key):
+    kind, side, sex = key
+    c1, sd, _, _ = ANDERSON_2007[key]
+    m, h = MEDIAN[sex]
+    i = 0 if side == "lower" else 1
+    assert torque(kind, "flexion", sex, 50)[i] == pytest.approx(c1 * m * 9.81 * h, rel=1e-9)
+    assert torque(kind, "flexion", sex, 5)[i] == pytest.approx((c1 - 1.645 * sd) * m * 9.81 * h, rel=1e-3)
+    assert torque(kind, "flexion", sex, 95)[i] == pytest.approx((c1 + 1.645 * sd) * m * 9.81 * h, rel=1e-3)
+
+
+def test_given_body_size_scales_by_weight_times_stature():
+    base = torque("knee", "flexion", "male", 50)[0]
+    assert torque("knee", "flexion", "male", 50, mass_kg=2 * MEDIAN["male"][0])[0] == pytest.approx(2 * base)
+    assert torque("knee", "flexion", "male", 50, stature_m=1.5 * MEDIAN["male"][1])[0] == pytest.approx(1.5 * base)
+
+
+@pytest.mark.parametrize("key", sorted(ANDERSON_2007))
+def test_posture_curve_at_the_source_points(key):
+    """cos(c2 (theta - c3)): the peak at c3, half of it a 60-degree phase away, the straight joint."""
+    kind, side, sex = key
+    _, _, c2, c3 = ANDERSON_2007[key]
+    i = 0 if side == "lower" else 1
+    peak = torque(kind, "flexion", sex, 50)[i]
+    assert torque(kind, "flexion", sex, 50, angle=c3)[i] == pytest.approx(peak)
+    for a in (c3 - np.pi / 3 / c2, c3 + np.pi / 3 / c2):
+        assert torque(kind, "flexion", sex, 50, angle=a)[i] == pytest.approx(0.5 * peak)
+    straight = max(0.1, np.cos(c2 * (0.0 - c3)))
+    assert torque(kind, "flexion", sex, 50, angle=0.0)[i] == pytest.approx(straight * peak)
+
+
+def test_knee_extension_is_weak_straight_and_strong_bent():
+    """Male knee extensors: 14.5 % of the peak with the knee straight, the peak at 65 deg flexion."""
+    straight = torque("knee", "flexion", "male", 50, angle=0.0)[0]
+    bent = torque("knee", "flexion", "male", 50, angle=np.radians(65.0))[0]
+    peak = torque("knee", "flexion", "male", 50)[0]
+    assert straight / peak == pytest.approx(np.cos(1.258 * 1.133), rel=1e-6)
+    assert bent / peak > 0.999
+
+
+def test_strength_table_at_posture_reads_the_figure_angles(male50):
+    assert male50.joint("left_knee").displacement[0] == 0.0  # the standard human stands straight-kneed
+    peak = strength_table(male50)
+    here = strength_table(male50, at_posture=True)
+    assert here["left_knee[0]"][0] < 0.2 * peak["left_knee[0]"][0]
+    assert here["left_elbow[0]"] == peak["left_elbow[0]"]  # no posture data: unchanged
+
+
+def test_percent_capable_signature_over_percentiles_1_to_99():
+    """ERGO's capable.py calls torque(kind, dof, sex, percentile) for P = 1..99."""
+    for sex in ("male", "female"):
+        for kind, dof in (("knee", "flexion"), ("hip", "flexion"), ("elbow", "flexion"), ("spine", "flexion")):
+            vals = [torque(kind, dof, sex, p) for p in range(1, 100)]
+            assert all(lo > 0 and hi > 0 for lo, hi in vals)
+            assert all(a[0] <= b[0] and a[1] <= b[1] for a, b in zip(vals, vals[1:]))
