@@ -23,6 +23,13 @@ def test_task_command_writes_motion_and_table(tmp_path, panel_scene, capsys):
     assert list(rows[0]) == fitts.TABLE_COLUMNS
     kinds = [m.kind for m in mf.timeline.motions]
     assert kinds[0] == "gaze" and "arm" in kinds
+    # the motion file plays on the scene alone (no task knowledge base): bake it coarsely
+    from jackpy.motion import cast
+    from jackpy.motion.bake import Baker
+
+    env, loops = cast.build(mf.timeline, scene=panel_scene)
+    frames = Baker(mf.timeline, loops, env, fps=2).bake()
+    assert len(frames) == int(mf.timeline.duration * 2) + 1
 
 
 def test_malformed_script_one_line_exit_2(tmp_path, capsys):

@@ -24,7 +24,7 @@ def test_every_command_succeeds(result):
 
 def test_looks_end_on_target(result):
     looks = [r for r in result.reports if r.command.startswith("Look")]
-    assert len(looks) == 7
+    assert len(looks) == 8
     for r in looks:
         errs = [v for k, v in r.checks.items() if k.endswith("error_deg")]
         assert errs and errs[-1] <= 1.0, (r.command, errs)

@@ -25,15 +25,6 @@ class Ref:
     site: str | None = None
     agent: bool = False
 
-    @property
-    def target(self) -> dict:
-        """The motion-model target (relative to the object, so it follows it)."""
-        if self.agent:
-            return {"site": f"{self.obj}.head.view"}
-        if self.site is None:
-            return {"point": [0.0, 0.0, 0.0], "relative_to": self.obj}
-        return {"site": f"{self.obj}.{self.site}", "relative_to": self.obj}
-
 
 class KnowledgeBase:
     """Semantics of the scene's objects plus the agents by name."""
@@ -118,6 +109,16 @@ class KnowledgeBase:
                 if c.site == ref.site:
                     return ref, c
         raise TaskError(f"{name!r} is not a control")
+
+    def target(self, ref: Ref) -> dict:
+        """The motion-model target of a reference: a point in the object's frame, relative to the
+        object (so it follows the object, and needs no site the scene file lacks), or an agent's
+        view site."""
+        if ref.agent:
+            return {"site": f"{ref.obj}.head.view"}
+        obj = self.env.figures[ref.obj]
+        local = [0.0, 0.0, 0.0] if ref.site is None else obj.user_sites()[ref.site].location[:3, 3].tolist()
+        return {"point": [float(v) for v in local], "relative_to": ref.obj}
 
     def world(self, ref: Ref) -> np.ndarray:
         """World position (m) of a reference now."""

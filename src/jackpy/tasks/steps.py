@@ -86,7 +86,7 @@ class Look(Step):
         point = sim.kb.world(self.ref)
         a = view_error_deg(sim, self.agent, point)
         dur = sim.timed(self.agent, self.label, "head", a, t)
-        sim.timeline.add(GazeMotion(figure=self.agent, which="eyes", t0=t, t1=t + dur, target=self.ref.target,
+        sim.timeline.add(GazeMotion(figure=self.agent, which="eyes", t0=t, t1=t + dur, target=sim.kb.target(self.ref),
                                     label=self.label))
         return dur
 
@@ -157,7 +157,7 @@ class Reach(Step):
         if self.corrections >= MAX_CORRECTIONS:
             raise TaskError(f"{self.agent} cannot reach {self.label}: {'fingertip' if self.tip else 'palm'} "
                             f"{err * 100:.1f} cm short (unreachable)")
-        nxt = Reach(self.agent, self.label, ref=self.ref, side=self.side, tip=self.tip, waist=True,
+        nxt = Reach(self.agent, self.label, ref=self.ref, side=self.side, tip=self.tip, waist=self.corrections >= 1,
                     offset=self.offset, point=self.point, corrections=self.corrections + 1)
         return [nxt]
 
