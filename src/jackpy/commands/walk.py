@@ -1,0 +1,83 @@
+"""``jackpy walk SCENE --to X,Z [--facing DEG] | --path "x,z x,z ..."``: a standard human walks
+from where the scene stands it, baked to a motion file (and optionally BVH). See docs/walking.md."""
+
+from __future__ import annotations
+
+import argparse
+
+import numpy as np
+
+
+def _point(text: str) -> tuple[float, float]:
+    parts = text.split(",")
+    if len(parts) != 2:
+        raise argparse.ArgumentTypeError(f"expected X,Z in metres, not {text!r}")
+    try:
+        x, z = (float(v) for v in parts)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected X,Z in metres, not {text!r}") from None
+    if not (np.isfinite(x) and np.isfinite(z)):
+        raise argparse.ArgumentTypeError(f"X,Z must be finite, not {text!r}")
+    return x, z
+
+
+def _path(text: str) -> list[tuple[float, float]]:
+    pts = [_point(t) for t in text.split()]
+    if not pts:
+        raise argparse.ArgumentTypeError("the path needs at least one point x,z")
+    return pts
+
+
+def _fps(text: str) -> float:
+    try:
+        v = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"expected a number, not {text!r}") from None
+    if not 0 < v <= 240:
+        raise argparse.ArgumentTypeError(f"fps must be in (0, 240], not {text}")
+    return v
+
+
+def register(subparsers) -> None:
+    p = subparsers.add_parser("walk", help="walk a standard human to a point or along a path (baked motion)")
+    p.add_argument("scene", metavar="SCENE", help="workplace scene (JSON; the figure starts at its stand), or -")
+    g = p.add_mutually_exclusive_group(required=True)
+    g.add_argument("--to", type=_point, metavar="X,Z", help="walk to this floor point (m)")
+    g.add_argument("--path", type=_path, metavar='"x,z x,z ..."', help="walk through these floor points (m)")
+    p.add_argument("--facing", type=float, default=None, metavar="DEG",
+                   help="heading at the end (degrees about +y, 0 faces +z; default: along the path)")
+    p.add_argument("--figure", default="male:50", metavar="NAME", help="standard human (male:50, female:5, ...)")
+    p.add_argument("--fps", type=_fps, default=30.0, help="frame rate of the baked motion (default 30)")
+    p.add_argument("-o", "--output", required=True, metavar="OUT.motion.json")
+    p.add_argument("--bvh", default=None, metavar="OUT.bvh", help="also write the walk as BVH")
+    p.set_defaults(func=run)
+
+
+def run(args) -> int:
+    from jackpy.commands.motion import Progress
+    from jackpy.locomotion import footsteps, walk_path, walk_solve
+    from jackpy.locomotion.walk_gait import GaitParams
+    from jackpy.motion import cast, motion_file
+
+    stand = (0.0, 0.0, 0.0)
+    if args.scene != "-":
+        from jackpy.scene.workplace import load_workplace
+
+        wp = load_workplace(args.scene)
+        stand = (float(wp.stand.position[0]), float(wp.stand.position[1]), float(wp.stand.heading))
+    fig = cast.make_figure("walker", {"human": args.figure, "position": list(stand[:2]),
+                                      "heading_deg": float(np.degrees(stand[2]))})
+    p = GaitParams.for_figure(fig)
+    start = np.array(stand[:2])
+    pts = [tuple(start)] + ([args.to] if args.to is not None else list(args.path))
+    facing = None if args.facing is None else float(np.radians(args.facing))
+    steps = footsteps.from_path(p, np.array(pts), facing=facing)
+    walk = walk_path.Walk(steps, p)
+    mf = walk_solve.motion_file(fig, walk, args.fps, args.figure, Progress("walking"))
+    motion_file.save(mf, args.output)
+    if args.bvh:
+        from jackpy.motion.bvh_export import write_bvh
+
+        write_bvh(fig, mf.baked[fig.name], args.fps, args.bvh)
+    print(f"{len(steps) - 2} steps, {mf.duration:.2f} s, {mf.n_frames} frames -> {args.output}")
+    return 0
