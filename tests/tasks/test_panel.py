@@ -4,7 +4,6 @@ control in the commanded state, and every duration is the Fitts time of the meas
 
 import math
 
-import numpy as np
 import pytest
 
 from jackpy.motion.kinds.arm import ArmMotion

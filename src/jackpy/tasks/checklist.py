@@ -25,7 +25,7 @@ from pathlib import Path
 
 from jackpy.errors import ParseError
 from jackpy.tasks import commands as c
-from jackpy.tasks.schedule import After, Entry
+from jackpy.tasks.schedule import After, At, Entry
 from jackpy.tasks.script import Script
 
 TOKEN = re.compile(r"[A-Za-z0-9_\-]+(?:\.[A-Za-z0-9_\-]+)*|[,.]|\S")
@@ -203,10 +203,8 @@ def parse(text: str, file: str = "<script>") -> Script:
             e.hook = True
             (prev.on_failure if hook == "fails" else prev.on_success).append(e)
             continue
-        start = After(last[agent]) if agent in last else None
-        from jackpy.tasks.schedule import At
-
-        prev = s.add(cmd, start=start if start else At(0.0), origin=origin)
+        start = After(last[agent]) if agent in last else At(0.0)
+        prev = s.add(cmd, start=start, origin=origin)
         last[agent] = prev.name
     return s
 

@@ -8,8 +8,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
-import numpy as np
-
 from jackpy.tasks import steps as st
 from jackpy.tasks.placement import container_pose, resting_pose
 from jackpy.tasks.semantics import TaskError, fold

@@ -16,7 +16,7 @@ from __future__ import annotations
 import csv
 import io
 import math
-from dataclasses import asdict, dataclass, field
+from dataclasses import asdict, dataclass
 
 ARM_A_MS, ARM_B_MS = -70.0, 74.0
 HEAD_A_MS, HEAD_B_MS = -268.0, 199.0

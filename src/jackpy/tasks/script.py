@@ -25,8 +25,6 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, Iterator
 
-import numpy as np
-
 from jackpy.tasks import fitts
 from jackpy.tasks import steps as st
 from jackpy.tasks.kb import KnowledgeBase
@@ -196,6 +194,7 @@ class Simulation:
     # ----- the run ---------------------------------------------------------------------------------
     def run(self, max_time: float) -> Result:
         pending: list[tuple[Entry, Start | None]] = []
+        blocks: dict[str, list[str]] = {}  # a together() block's end marker -> its entries
         prev: str | None = None
         for item in self.script.entries:
             block = item if isinstance(item, list) else [item]
@@ -203,9 +202,7 @@ class Simulation:
                 pending.append((e, e.start if e.start is not None else (After(prev) if prev else At(0.0))))
             prev = f"__block_end_{id(item)}" if isinstance(item, list) else block[0].name
             if isinstance(item, list):
-                self._blocks = getattr(self, "_blocks", {})
-                self._blocks[prev] = [e.name for e in block]
-        blocks = getattr(self, "_blocks", {})
+                blocks[prev] = [e.name for e in block]
         started: dict[str, float] = {}
         ended: dict[str, tuple[float, str]] = {}
         active: list[dict[str, Any]] = []  # running entries: entry, steps left, current step, its end

@@ -15,7 +15,6 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from jackpy.tasks import fitts
 from jackpy.tasks.kb import Ref
 from jackpy.tasks.semantics import TaskError
 
