@@ -4,7 +4,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-system-deps.sh
-python3 -m pip install -q --disable-pip-version-check -e '.[test,cad,planning,cluster,bench]'
+python3 -m pip install -q --disable-pip-version-check -e '.[test,cad,planning,cluster,bench,fast]'
 if [ -z "${DISPLAY:-}" ]; then
     exec xvfb-run -a -s "-screen 0 1600x1200x24" python3 -m pytest "$@"
 fi
