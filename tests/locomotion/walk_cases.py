@@ -11,8 +11,8 @@ from jackpy.locomotion.walk_gait import GaitParams
 from jackpy.motion import cast
 
 FPS = 12.0
-#: the S-curve x = 0.6 sin(πz/2) ends at z = 4 with this heading (its tangent there)
-S_END_HEADING = float(np.arctan2(0.6 * np.pi / 2, 1.0))
+#: the S-curve x = 0.5 sin(πz/3) ends at z = 6 with this heading (its tangent there)
+S_END_HEADING = float(np.arctan2(0.5 * np.pi / 3, 1.0))
 SOLE = [("foot", "heel"), ("foot", "ball"), ("toes", "tip")]
 
 
@@ -32,8 +32,8 @@ def baked(human: str, kind: str):
         a = np.linspace(0.0, np.pi / 2, 9)
         steps = footsteps.from_path(p, np.column_stack([2.0 - 2.0 * np.cos(a), 2.0 * np.sin(a)]), facing=np.pi / 2)
     elif kind == "s-curve":
-        z = np.linspace(0.0, 4.0, 9)
-        steps = footsteps.from_path(p, np.column_stack([0.6 * np.sin(z * np.pi / 2), z]), facing=S_END_HEADING)
+        z = np.linspace(0.0, 6.0, 13)
+        steps = footsteps.from_path(p, np.column_stack([0.5 * np.sin(z * np.pi / 3), z]), facing=S_END_HEADING)
     else:
         raise KeyError(kind)
     walk = walk_path.Walk(steps, p)
