@@ -1,0 +1,53 @@
+"""Benchmark row of human walking.
+
+- ``walk-plan``: a 10 m walk of the standard male (2 m with ``--quick``) on the example
+  workplace's floor, away from its objects: footsteps from the path, the walk's targets and the
+  bake at 30 fps; the median is per baked frame (targets + IK), ``extra`` has the planning time
+  (footsteps and targets of every frame), the whole time and frames per second. Obstacles are not
+  planned around yet (docs/walking.md). Baseline: one behavior-loop frame of the same figure
+  standing (the ratio: interactive frames per walk frame, inverted).
+"""
+
+from __future__ import annotations
+
+import time
+
+import numpy as np
+
+from jackpy.bench.runner import Case, Result, Timing
+
+
+def _walk_case(quick: bool) -> Result:
+    from jackpy.locomotion import footsteps, walk_path
+    from jackpy.locomotion.walk_gait import GaitParams
+    from jackpy.locomotion.walk_solve import WalkSolver
+    from jackpy.motion import cast
+
+    distance = 2.0 if quick else 10.0
+    fig = cast.make_figure("jack", {"human": "male:50", "position": [0.0, -1.0], "heading_deg": 180.0})
+    loop = cast.loop_for(cast.make_figure("ref", {"human": "male:50"}))
+    base = []
+    for _ in range(20):
+        s = time.perf_counter()
+        loop.step()
+        base.append((time.perf_counter() - s) * 1e3)
+    t0 = time.perf_counter()
+    p = GaitParams.for_figure(fig)
+    steps = footsteps.from_path(p, [(0.0, -1.0), (0.0, -1.0 - distance)])
+    walk = walk_path.Walk(steps, p)
+    frames = walk.frames(30.0)
+    plan_ms = (time.perf_counter() - t0) * 1e3
+    solver = WalkSolver(fig, p)
+    samples = []
+    for tg in frames:
+        s = time.perf_counter()
+        solver.pose(tg)
+        samples.append((time.perf_counter() - s) * 1e3)
+    total = time.perf_counter() - t0
+    timing = Timing(np.array(samples))
+    return Result("walk-plan", timing.median_ms, timing.p90_ms, float(np.median(base)),
+                  {"metres": distance, "steps": len(steps) - 2, "frames": len(frames), "plan_ms": plan_ms,
+                   "total_s": total, "frames_per_s": len(frames) / total})
+
+
+CASES = [Case("walk-plan", _walk_case, "footsteps, targets and IK bake of a 10 m walk (30 fps)")]
