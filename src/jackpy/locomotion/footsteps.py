@@ -115,26 +115,20 @@ def from_path(p: GaitParams, points, facing: float | None = None, first: str | N
 
 
 def _stop(p: GaitParams, steps: list[Footstep], c: np.ndarray, psi: float, side: str) -> list[Footstep]:
-    """Two steps to stand at ``c`` facing ``psi``, turning ≤ 45° per step (more steps on the spot)."""
+    """Steps to stand at ``c`` facing ``psi`` with the feet together, turning ≤ 45° per step
+    (extra steps on the spot for larger turns)."""
     out: list[Footstep] = []
-    w = p.foot.width
     last = steps[-1].psi
     while True:
         turn = (psi - last + np.pi) % (2 * np.pi) - np.pi
-        h = last + float(np.clip(turn, -MAX_TURN, MAX_TURN))
-        out.append(_foot_at(c, h, side, w))
+        last = last + float(np.clip(turn, -MAX_TURN, MAX_TURN))
+        out.append(_foot_at(c, last, side, p.foot.width))
         side = "left" if side == "right" else "right"
-        last = h
-        if abs(turn) <= MAX_TURN and len(out) >= 2 and out[-2].psi == out[-1].psi:
-            break
-        if abs(turn) <= MAX_TURN and len(out) >= 1 and abs(h - psi) < 1e-12 and _other_ok(out, steps, h):
-            out.append(_foot_at(c, h, side, w))
-            break
-    return out
-
-
-def _other_ok(out, steps, h) -> bool:
-    return True
+        if len(out) >= 2 and abs(out[-2].psi - psi) < 1e-12 and abs(out[-1].psi - psi) < 1e-12:
+            return out
+        if abs(turn) <= MAX_TURN and len(out) >= 2 and abs(out[-1].psi - psi) < 1e-12:
+            out.append(_foot_at(c, last, side, p.foot.width))
+            return out
 
 
 def turn_in_place(p: GaitParams, c, psi0: float, psi1: float) -> list[Footstep]:

@@ -187,7 +187,6 @@ class Walk:
             stance = "right" if side == "left" else "left"
             return self.keys[0], self.key_dir[0], None, stance, float(smooth(u)) if n > 2 else 0.0
         if t >= land[-1]:
-            u = min(1.0, (t - land[-1]) / STOP_TIME)
             return self.keys[-1], self.key_dir[-1], None, st[-1].side, 0.0
         j = int(np.searchsorted(land[2:], t, side="right")) + 2  # footstep j is swinging in
         t0 = START_TIME if j == 2 else land[j - 1]
