@@ -7,6 +7,12 @@ import sys
 import pytest
 
 
+@pytest.fixture(autouse=True)
+def _user_home(tmp_path, monkeypatch):
+    """Each test has its own ``$JACKPY_HOME`` (layout, recovery), never the user's ~/.jackpy."""
+    monkeypatch.setenv("JACKPY_HOME", str(tmp_path / "jackpy_home"))
+
+
 def offscreen_renderer_or_skip(width: int, height: int):
     """An offscreen (EGL) renderer, or skip the test with the reason when none can be made.
 

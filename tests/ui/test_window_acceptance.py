@@ -58,13 +58,13 @@ def test_drag_hand_undo_save_reopen(window, tmp_path):
     target = start + [0.2, 0.0, 0.0]
     p0, p1 = app.world_to_pixel(start), app.world_to_pixel(target)
 
-    window.cursor_pos_callback(h, *p0)
+    window.cursor_pos_callback(h, *window.view_to_window(p0))
     window.frame()
     window.mouse_button_callback(h, MOUSE_LEFT, PRESS, 0)
     assert app.selection is not None
     assert effector_segments(fig, eff)[app.selection.segment] == "right_hand"  # palm or thumb
     for t in np.linspace(0.0, 1.0, 12)[1:]:
-        window.cursor_pos_callback(h, *(p0 + t * (p1 - p0)))
+        window.cursor_pos_callback(h, *window.view_to_window(p0 + t * (p1 - p0)))
         window.frame()
     window.mouse_button_callback(h, MOUSE_LEFT, RELEASE, 0)
     for _ in range(30):
@@ -103,10 +103,10 @@ def test_empty_space_drag_orbits_and_wheel_zooms(window):
         return
     app, h = window.app, window.handle
     yaw, dist = app.camera.yaw, app.camera.distance
-    window.cursor_pos_callback(h, 512, 60)
+    window.cursor_pos_callback(h, *window.view_to_window((200, 30)))  # empty space in the 3-D view
     window.frame()
     window.mouse_button_callback(h, MOUSE_LEFT, PRESS, 0)
-    window.cursor_pos_callback(h, 600, 60)
+    window.cursor_pos_callback(h, *window.view_to_window((290, 30)))
     window.mouse_button_callback(h, MOUSE_LEFT, RELEASE, 0)
     window.scroll_callback(h, 0.0, 2.0)
     window.frame()

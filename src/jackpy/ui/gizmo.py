@@ -52,14 +52,15 @@ class Gizmo:
                 return FigureTarget(app, fig)
         return None
 
-    def draw(self, app: "App", width: float, height: float) -> None:
-        """Draw and run the gizmo over the whole viewport (call between imgui frame begin/end)."""
+    def draw(self, app: "App", width: float, height: float, x: float = 0.0, y: float = 0.0) -> None:
+        """Draw and run the gizmo over the 3-D view, ``width`` x ``height`` at (``x``, ``y``) in
+        window coordinates (call between imgui frame begin/end)."""
         gz.begin_frame()
         target = self._target(app) if self.enabled else None
         if target is None:
             return
         gz.set_orthographic(app.camera.orthographic)
-        gz.set_rect(0.0, 0.0, width, height)
+        gz.set_rect(x, y, width, height)
         aspect = width / max(height, 1.0)
         s = app.settings
         op = gz.OPERATION.rotate if self.rotate else gz.OPERATION.translate

@@ -4,7 +4,7 @@ The window owns the GL context and forwards every glfw callback first to ImGui, 
 or the gizmo wants the mouse or keyboard, to the :class:`~jackpy.ui.app.App` handlers. Cursor
 positions arrive in window coordinates and are scaled to framebuffer pixels. One
 :meth:`Window.frame` = poll events, ImGui frame with panels and gizmo, ``app.step()`` (IK, then the
-3-D view into the renderer's framebuffer), blit it to the screen, ImGui on top, swap.
+3-D view into the renderer's framebuffer, shown as an image in the dock's central node behind every window), ImGui, swap.
 
 :meth:`Window.run` does not spin when nothing happens: after ``IDLE_AFTER_FRAMES`` frames without
 input, solving, sensor streaming or a redrawn 3-D view, it sleeps in ``glfw.wait_events_timeout``
@@ -17,6 +17,7 @@ from __future__ import annotations
 import ctypes
 import time
 from collections.abc import Callable
+from pathlib import Path
 
 import imgui_bundle  # noqa: F401  (first: points the glfw package at imgui-bundle's libglfw)
 import glfw
@@ -26,7 +27,9 @@ from imgui_bundle import imgui
 from jackpy.errors import JackpyError
 from jackpy.ui.app import App, KEY_ESCAPE, MOD_CONTROL, PRESS
 from jackpy.ui.gizmo import Gizmo
-from jackpy.ui.panels import UiState, draw_all
+from jackpy.ui.layout import Layout, Rect
+from jackpy.ui.panels import UiState, draw_all, panels
+from jackpy.ui.status import FrameRate, Notifications, draw_status_bar
 from jackpy.render import Renderer
 
 KEY_O, KEY_Q, KEY_S, KEY_T, KEY_R = ord("O"), ord("Q"), ord("S"), ord("T"), ord("R")
@@ -44,7 +47,7 @@ class Window:
     """A glfw window showing an :class:`App`; ``visible=False`` for tests that only need the loop."""
 
     def __init__(self, app: App, title: str = "jackpy", size: tuple[int, int] = (1280, 800),
-                 visible: bool = True) -> None:
+                 visible: bool = True, layout_file: Path | None = None) -> None:
         reporting, glfw.ERROR_REPORTING = glfw.ERROR_REPORTING, "ignore"  # our own one-line error instead
         try:
             ok = glfw.init()
@@ -67,13 +70,18 @@ class Window:
         self._addr = ctypes.cast(self.handle, ctypes.c_void_p).value
         self.imgui_ctx = imgui.create_context()
         imgui.get_io().config_flags |= imgui.ConfigFlags_.nav_enable_keyboard
-        imgui.get_io().set_ini_filename("")
+        self.layout = Layout(layout_file)  # docking, the user's saved layout ($JACKPY_HOME/layout.ini)
         imgui.backends.glfw_init_for_opengl(self._addr, False)
         imgui.backends.opengl3_init("#version 330")
         self.app = app
         fb = glfw.get_framebuffer_size(self.handle)
         app.renderer = Renderer(self.ctx, fb)
         app.resize(*fb)
+        self.view_rect = Rect(0.0, 0.0, float(size[0]), float(size[1]))
+        """The 3-D view's rect (the dock's central node) in window coordinates."""
+        self.notifications = Notifications()
+        app.on_log = self.notifications.push
+        self.rate = FrameRate()
         self.ui = UiState()
         self.gizmo = Gizmo()
         self._closed = False
@@ -88,6 +96,17 @@ class Window:
         glfw.set_key_callback(self.handle, self.key_callback)
         glfw.set_char_callback(self.handle, self.char_callback)
         glfw.set_framebuffer_size_callback(self.handle, self.framebuffer_size_callback)
+        self._settle_layout()
+
+    def _settle_layout(self) -> None:
+        """Two ImGui frames of the panels without solving or drawing the 3-D view, so that the
+        dock's central node (the 3-D view's rect and size) is final before the first real frame."""
+        for _ in range(2):
+            imgui.backends.opengl3_new_frame()
+            imgui.backends.glfw_new_frame()
+            imgui.new_frame()
+            draw_all(self.app, self.ui, self._chrome)
+            imgui.end_frame()
 
     # ------------------------------------------------------------------ glfw callbacks
     def _scale(self) -> tuple[float, float]:
@@ -105,7 +124,15 @@ class Window:
         self._quiet = 0
         imgui.backends.glfw_cursor_pos_callback(self._addr, x, y)
         sx, sy = self._scale()
-        self.app.on_cursor_pos(x * sx, y * sy)
+        r = self.view_rect
+        self.app.on_cursor_pos((x - r.x) * sx, (y - r.y) * sy)
+
+    def view_to_window(self, p: "tuple[float, float] | object") -> tuple[float, float]:
+        """Window coordinates of 3-D view pixel ``p`` (framebuffer pixels of the view, e.g.
+        :meth:`App.world_to_pixel`): the inverse of what :meth:`cursor_pos_callback` does."""
+        sx, sy = self._scale()
+        x, y = p  # type: ignore[misc]
+        return self.view_rect.x + float(x) / sx, self.view_rect.y + float(y) / sy
 
     def mouse_button_callback(self, window: object, button: int, action: int, mods: int) -> None:
         self._quiet = 0
@@ -137,8 +164,7 @@ class Window:
         imgui.backends.glfw_char_callback(self._addr, codepoint)
 
     def framebuffer_size_callback(self, window: object, width: int, height: int) -> None:
-        self._quiet = 0
-        self.app.resize(width, height)
+        self._quiet = 0  # the next frame sizes the 3-D view to the dock's central node
 
     def _shortcut(self, key: int) -> None:
         from jackpy.ui import session
@@ -159,23 +185,44 @@ class Window:
         imgui.backends.opengl3_new_frame()
         imgui.backends.glfw_new_frame()
         imgui.new_frame()
-        draw_all(self.app, self.ui)
+        self.rate.tick()
+        draw_all(self.app, self.ui, self._chrome)
+        self.notifications.draw(self.view_rect)
         fw, fh = glfw.get_framebuffer_size(self.handle)
-        w, h = glfw.get_window_size(self.handle)
-        self.gizmo.draw(self.app, w, h)
+        r = self.view_rect
+        self.gizmo.draw(self.app, r.w, r.h, r.x, r.y)
         imgui.render()
         drawn = self.app.renderer.frames_drawn if self.app.renderer is not None else 0
+        self.ctx.screen.use()
+        self.ctx.viewport = (0, 0, fw, fh)
+        self.ctx.screen.clear(0.12, 0.12, 0.13, 1.0)
         if fw > 0 and fh > 0:
             self.app.step()
             self.ctx.screen.use()
             self.ctx.viewport = (0, 0, fw, fh)
-            self.app.renderer.blit(self.ctx.screen)
         imgui.backends.opengl3_render_draw_data(imgui.get_draw_data())
         self.update_title()
         glfw.swap_buffers(self.handle)
         busy = self.app.needs_solve or self.app.driving or (
             self.app.renderer is not None and self.app.renderer.frames_drawn != drawn)
         self._quiet = 0 if busy else self._quiet + 1
+
+    def _chrome(self) -> None:
+        """Between the menu bar and the panels: the status bar, the dockspace (its central node
+        is the 3-D view, sized to it) and the 3-D view's image behind every window."""
+        draw_status_bar(self.app, self.rate)
+        if self.ui.reset_layout:
+            self.layout.request_reset()
+            self.ui.reset_layout = False
+        r = self.view_rect = self.layout.begin([p.title for p in panels()])
+        sx, sy = self._scale()
+        size = (max(int(r.w * sx), 1), max(int(r.h * sy), 1))
+        if size != self.app.size:
+            self.app.resize(*size)
+        if self.app.renderer is not None:
+            tex = imgui.ImTextureRef(int(self.app.renderer.color_texture.glo))
+            imgui.get_background_draw_list().add_image(tex, (r.x, r.y), (r.x + r.w, r.y + r.h),
+                                                       (0.0, 1.0), (1.0, 0.0))
 
     @property
     def idle(self) -> bool:

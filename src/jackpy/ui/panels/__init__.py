@@ -74,6 +74,8 @@ class UiState:
     import_units: str = "m"
     """Units and up axis chosen in the Import CAD dialog."""
     import_up: str = "y"
+    reset_layout: bool = False
+    """View → Reset layout was chosen: the window rebuilds the default docked layout."""
 
     def panel_state(self, title: str, defaults: dict[str, Any] | None = None) -> dict[str, Any]:
         """Panel ``title``'s widget state, made from ``defaults`` on first use."""
@@ -83,11 +85,14 @@ class UiState:
         return state
 
 
-def draw_all(app: App, ui: UiState) -> None:
-    """Draw the menu bar, the open panels and any prompt."""
+def draw_all(app: App, ui: UiState, before_panels: Callable[[], None] | None = None) -> None:
+    """Draw the menu bar, ``before_panels`` (the window's status bar and dockspace), the open
+    panels and any prompt."""
     from jackpy.ui.panels import menu_bar
 
     menu_bar.draw(app, ui)
+    if before_panels is not None:
+        before_panels()
     for p in panels():
         if p.always or ui.open_panels.get(p.title):
             p.draw(app, ui)

@@ -23,7 +23,7 @@ def draw(app: "App", ui: "UiState") -> None:
         imgui.text(f"IK {s.solve_s * 1e3:5.1f} ms ({s.iterations} it)   draw {s.draw_s * 1e3:5.1f} ms")
         imgui.separator()
         for line in app.log[-200:]:
-            imgui.text_unformatted(line)
+            imgui.text_wrapped(line)
         if imgui.get_scroll_y() >= imgui.get_scroll_max_y():
             imgui.set_scroll_here_y(1.0)
     imgui.end()

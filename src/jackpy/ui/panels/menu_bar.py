@@ -63,6 +63,8 @@ def draw(app: "App", ui: "UiState") -> None:
             s.literal_grab = imgui.menu_item("Literal Jack grab (jump)", "", s.literal_grab)[1]
             s.gizmo_local = imgui.menu_item("Gizmo in local frame", "", s.gizmo_local)[1]
             app.manipulation_mode = imgui.menu_item("Manipulation mode", "M", app.manipulation_mode)[1]
+            if imgui.menu_item_simple("Reset layout"):
+                ui.reset_layout = True
             imgui.separator()
             for name in ui.open_panels:
                 ui.open_panels[name] = imgui.menu_item(name, "", ui.open_panels[name])[1]
