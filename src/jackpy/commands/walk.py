@@ -1,5 +1,7 @@
 """``jackpy walk SCENE --to X,Z [--facing DEG] | --path "x,z x,z ..."``: a standard human walks
-from where the scene stands it, baked to a motion file (and optionally BVH). See docs/walking.md."""
+from where the scene stands it (or ``--from``), baked to a motion file (and optionally BVH);
+``--to`` plans around the scene's objects, ``--path`` follows the points as given.
+See docs/walking.md."""
 
 from __future__ import annotations
 
@@ -46,6 +48,8 @@ def register(subparsers) -> None:
     g.add_argument("--path", type=_path, metavar='"x,z x,z ..."', help="walk through these floor points (m)")
     p.add_argument("--facing", type=float, default=None, metavar="DEG",
                    help="heading at the end (degrees about +y, 0 faces +z; default: along the path)")
+    p.add_argument("--from", dest="start", type=_point, default=None, metavar="X,Z",
+                   help="start here (m; default: the scene's stand)")
     p.add_argument("--figure", default="male:50", metavar="NAME", help="standard human (male:50, female:5, ...)")
     p.add_argument("--fps", type=_fps, default=30.0, help="frame rate of the baked motion (default 30)")
     p.add_argument("-o", "--output", required=True, metavar="OUT.motion.json")
@@ -65,13 +69,20 @@ def run(args) -> int:
 
         wp = load_workplace(args.scene)
         stand = (float(wp.stand.position[0]), float(wp.stand.position[1]), float(wp.stand.heading))
+    objects = list(wp.objects.values()) if args.scene != "-" else []
+    if args.start is not None:
+        stand = (args.start[0], args.start[1], stand[2])
     fig = cast.make_figure("walker", {"human": args.figure, "position": list(stand[:2]),
                                       "heading_deg": float(np.degrees(stand[2]))})
     p = GaitParams.for_figure(fig)
-    start = np.array(stand[:2])
-    pts = [tuple(start)] + ([args.to] if args.to is not None else list(args.path))
     facing = None if args.facing is None else float(np.radians(args.facing))
-    steps = footsteps.from_path(p, np.array(pts), facing=facing)
+    if args.to is not None:
+        from jackpy.locomotion.walk_to import walk_to
+
+        steps, _, _ = walk_to(fig, p, args.to, objects, facing=facing, start=stand[:2])
+    else:
+        pts = [tuple(stand[:2])] + list(args.path)
+        steps = footsteps.from_path(p, np.array(pts), facing=facing)
     walk = walk_path.Walk(steps, p)
     mf = walk_solve.motion_file(fig, walk, args.fps, args.figure, Progress("walking"))
     motion_file.save(mf, args.output)
