@@ -111,6 +111,8 @@ class PointReach:
     posture: Posture | None = None
     #: collision-aware verdict (:class:`jackpy.planning.collision_reach.Verdict`; None without obstacles)
     verdict: Any = None
+    #: with obstacles: ``(shortfall, Posture)`` reached when collisions are ignored (what "blocked" compares with)
+    verdict_any: Any = None
 
     @property
     def stepped(self) -> bool:

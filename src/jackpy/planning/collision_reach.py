@@ -252,8 +252,7 @@ def collision_free_arm_reach(figure: Figure, target: np.ndarray, hand: str, chai
         if best[0] <= tolerance and best[1] == 0:
             break
     if best is not None and best[0] > tolerance:
-        best = _approach(figure, problem, goal, h, chain or h.start_joint, target, free, best, q0, tolerance,
-                         max_iterations)
+        best = _approach(figure, h, chain or h.start_joint, target, free, best, q0, tolerance, max_iterations)
     figure.q = q0
     for n, a in groups.items():
         figure.groups[n].angles = a
@@ -264,8 +263,8 @@ def collision_free_arm_reach(figure: Figure, target: np.ndarray, hand: str, chai
     return ArmSearch(best[2], best[0], pos, status, n_free, any_best[0], any_best[1])
 
 
-def _approach(figure: Figure, problem, goal, h, chain: str, target: np.ndarray, free, best: tuple,
-              q0: np.ndarray, tolerance: float, max_iterations: int, levels: int = 4) -> tuple:
+def _approach(figure: Figure, h, chain: str, target: np.ndarray, free, best: tuple, q0: np.ndarray,
+              tolerance: float, max_iterations: int, levels: int = 4) -> tuple:
     """Nearest free hand position on the line from the target back to the shoulder (the chain's
     first joint): bisection on the fraction of the way back, IK from the start posture and from the
     best free posture so far; returns the better of that and ``best`` as ``(distance, rank, q)``."""
@@ -277,13 +276,13 @@ def _approach(figure: Figure, problem, goal, h, chain: str, target: np.ndarray, 
     for _ in range(levels):
         mid = (lo_s + hi_s) / 2
         aim = target + mid * (shoulder - target)
-        goal.target = aim
+        problem = ik.Problem(figure)
+        problem.add(ik.Position(f"{h.segment}.{h.site}", aim, chain=chain))
         ok = False
         for seed in seeds:
             figure.q = seed.copy()
             ik.solve(problem, max_iterations=max_iterations, tol_position=tolerance / 5)
             qs = figure.q.copy()
-            figure.q = qs
             at = figure.site_world(h.segment, h.site)[:3, 3]
             if np.linalg.norm(at - aim) <= 2 * tolerance and free(qs):
                 d = float(np.linalg.norm(at - target))
@@ -295,7 +294,6 @@ def _approach(figure: Figure, problem, goal, h, chain: str, target: np.ndarray, 
             hi_s = mid
         else:
             lo_s = mid
-    goal.target = target
     return best
 
 
