@@ -179,6 +179,18 @@ class Compiled:
         self.columns = Columns(kin, self.cols)
         A, b = vm.linear_constraints()
         self.A_x, self.b_x = A, b
+        # the rows over z do not change between solves: only their right-hand side does
+        A_z = A[:, self.vidx] * self.scale
+        self._row_keep = np.any(A_z != 0.0, axis=1)
+        self._A_z = A_z[self._row_keep] if A.shape[0] else np.zeros((0, self.nv))
+        self._no_rows = np.zeros(0)
+        self._A_z.flags.writeable = False  # shared by every solve
+        # constant part of the group chain-rule matrix (the free variables' identity block)
+        self._M0 = None
+        if self.groups:
+            M0 = np.zeros((self.cols.size, self.nv))
+            M0[np.arange(self.n_free_vars), np.arange(self.n_free_vars)] = 1.0
+            self._M0 = M0
         self.arm: ArmChain | None = None
         if len(self.entries) == 1 and not self.groups:
             from jackpy.ik.arm7 import match_arm
@@ -197,11 +209,9 @@ class Compiled:
         if self.A_x.shape[0]:
             rest = x.copy()
             rest[self.vidx] = 0.0
-            A = self.A_x[:, self.vidx] * self.scale
             b = self.b_x - self.A_x @ rest
-            keep = np.any(A != 0.0, axis=1)
-            return x, z, A[keep], b[keep]
-        return x, z, np.zeros((0, self.nv)), np.zeros(0)
+            return x, z, self._A_z, b[self._row_keep]
+        return x, z, self._A_z, self._no_rows
 
     def x_of(self, x_base: np.ndarray, z: np.ndarray) -> np.ndarray:
         x = x_base.copy()
@@ -232,10 +242,8 @@ class Compiled:
         fk = self.kin.forward(q, self.figure.location)
         ctx = Context(self.kin, fk, self.cols, self.columns)
         if self.groups:
-            M = np.zeros((self.cols.size, self.nv))
-            nf = self.n_free_vars
-            M[np.arange(nf), np.arange(nf)] = 1.0
-            row, col = nf, nf
+            M = self._M0.copy()
+            row = col = self.n_free_vars
             for g, idx, sl, used in self.groups:
                 jac = np.asarray(g.driver.jacobian(x[sl]), dtype=float)[:, used]
                 M[row:row + idx.size, col:col + used.size] = jac

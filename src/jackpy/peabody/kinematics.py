@@ -257,7 +257,9 @@ class Kinematics:
         if self.use_jit:
             W = np.empty((nseg, 4, 4))
             axes, origins = np.empty((self.ndof, 3)), np.empty((self.ndof, 3))
-            forward_kernel(q, np.asarray(location, dtype=float), self.root_site_inv, *self._jit_tables,
+            # contiguous float64 always: one compiled specialisation, never a new one per caller
+            forward_kernel(np.ascontiguousarray(q), np.ascontiguousarray(location, dtype=float),
+                           self.root_site_inv, *self._jit_tables,
                            W, axes, origins)
             return FKResult(W, axes, origins)
         return self.forward_numpy(q, location)

@@ -275,13 +275,17 @@ class Figure:
 
     @q.setter
     def q(self, value: np.ndarray) -> None:
-        v = np.asarray(value, dtype=float).reshape(-1)
-        if v.size != self.ndof:
-            raise FigureError(f"figure {self.name!r}: q has {v.size} values, figure has {self.ndof} DOFs")
+        # one private copy; each joint gets its own disjoint slice of it (one walk over the joints,
+        # no per-joint copies: this runs once per IK solve, see docs/ik.md "Warm solves")
+        v = np.array(value, dtype=float).reshape(-1)
+        joints = list(self.joints.values())
+        sizes = [len(j.dofs) for j in joints]
+        if v.size != sum(sizes):
+            raise FigureError(f"figure {self.name!r}: q has {v.size} values, figure has {sum(sizes)} DOFs")
         start = 0
-        for j in self.joints.values():
-            j.displacement = v[start:start + j.ndof].copy()
-            start += j.ndof
+        for j, n in zip(joints, sizes):
+            j.displacement = v[start:start + n]
+            start += n
 
     @property
     def lower(self) -> np.ndarray:
