@@ -102,11 +102,18 @@ class Window:
         """Two ImGui frames of the panels without solving or drawing the 3-D view, so that the
         dock's central node (the 3-D view's rect and size) is final before the first real frame."""
         for _ in range(2):
-            imgui.backends.opengl3_new_frame()
-            imgui.backends.glfw_new_frame()
-            imgui.new_frame()
-            draw_all(self.app, self.ui, self._chrome)
-            imgui.end_frame()
+            self.panels_frame()
+
+    def panels_frame(self, extra: Callable[[], None] | None = None) -> None:
+        """One ImGui frame of the panels (and ``extra``) only: no events polled, no solve, no 3-D
+        view drawn, nothing shown (layout settling; tests that sweep the mouse over widgets)."""
+        imgui.backends.opengl3_new_frame()
+        imgui.backends.glfw_new_frame()
+        imgui.new_frame()
+        draw_all(self.app, self.ui, self._chrome)
+        if extra is not None:
+            extra()
+        imgui.end_frame()
 
     # ------------------------------------------------------------------ glfw callbacks
     def _scale(self) -> tuple[float, float]:

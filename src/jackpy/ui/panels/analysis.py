@@ -467,6 +467,7 @@ def _strength_section(app: App, state: AnalysisState, w: dict) -> None:
     from imgui_bundle import imgui
 
     from jackpy.analysis import strength_colour
+    from jackpy.ui.names import dof_key_label
 
     if not _header(w, "Strength##section"):
         return
@@ -483,8 +484,9 @@ def _strength_section(app: App, state: AnalysisState, w: dict) -> None:
         u = bar.required / bar.strength if bar.strength > 0 else (np.inf if bar.required > 0 else 0.0)
         r, g, b = strength_colour(min(u, 2.0))
         imgui.push_style_color(imgui.Col_.plot_histogram, imgui.ImVec4(float(r), float(g), float(b), 1.0))
+        imgui.text(dof_key_label(bar.dof))  # its own line: never clipped by the bar
         imgui.progress_bar(float(min(u, 1.0)), (-1, 0),
-                           f"{bar.dof}: {bar.required:.0f} / {bar.strength:.0f} N m ({100 * u:.0f}%)")
+                           f"{bar.required:.0f} / {bar.strength:.0f} N m ({100 * u:.0f}%)")
         imgui.pop_style_color()
 
 

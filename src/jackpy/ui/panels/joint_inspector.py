@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 from imgui_bundle import imgui
 
+from jackpy.ui.names import dof_label, dof_name, joint_label, is_human
 from jackpy.ui.panels import Panel
 from jackpy.ui.scene_view import SegmentPick, is_object
 
@@ -16,6 +17,8 @@ if TYPE_CHECKING:
     from jackpy.ui.panels import UiState
 
 
+LABEL_WIDTH = 110.0
+"""Pixels of a DOF's name left of its slider."""
 DEFAULTS: dict[str, str | None] = {"focus": None}
 """The panel's state: the joint opened for the last selection (a new selection opens its joint once)."""
 
@@ -39,24 +42,29 @@ def draw(app: "App", ui: "UiState") -> None:
             state = ui.panel_state("Joints", DEFAULTS)
             refocus = focus is not None and focus != state["focus"]
             state["focus"] = focus
+            human = is_human(fig)
             for joint in fig.joints.values():
                 if refocus:
                     imgui.set_next_item_open(joint.name == focus, imgui.Cond_.always)
-                if not imgui.tree_node(f"{joint.name}##joint"):
+                if not imgui.tree_node(f"{joint_label(joint.name) if human else joint.name}##{joint.name}"):
                     continue
                 for k, dof in enumerate(joint.dofs):
                     rot = dof.kind == "R"
                     f = 180.0 / np.pi if rot else 100.0
                     unit = "deg" if rot else "cm"
-                    changed, v = imgui.slider_float(f"{dof.kind}{k} {unit}##{joint.name}{k}",
+                    imgui.text(dof_name(joint.name, k) if human else f"{dof.kind}{k + 1}")
+                    imgui.same_line(LABEL_WIDTH)
+                    imgui.set_next_item_width(-1)
+                    changed, v = imgui.slider_float(f"##{joint.name}{k}",
                                                     float(joint.displacement[k] * f),
-                                                    float(dof.lower * f), float(dof.upper * f), "%.1f")
+                                                    float(dof.lower * f), float(dof.upper * f),
+                                                    f"%.1f {unit}")
                     if imgui.is_item_activated():
                         app.begin_edit()
                     if changed:
                         app.doc.set_dof(fig, joint.name, k, v / f)  # through the figure, clamped
                     if imgui.is_item_deactivated_after_edit():
-                        app.end_edit(f"set {joint.name}[{k}]")
+                        app.end_edit(f"set {dof_label(joint.name, k) if human else f'{joint.name}[{k}]'}")
                 imgui.tree_pop()
     imgui.end()
 
