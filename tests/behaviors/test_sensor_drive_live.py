@@ -161,7 +161,9 @@ def test_stepping_from_a_forward_waist_translation():
     # no jerk at lift-off (was 10-20 cm back in a frame, palms 15 cm off): the weight shifts over the
     # stance foot before the swing, the former root foot is held from the frame the root switches
     assert worst_back < 0.03, f"the pelvis moved {worst_back * 100:.1f} cm back in a frame"
-    assert worst_palm < 0.045, f"a palm was {worst_palm * 100:.1f} cm off its sensor"
+    # 5 cm: a balance step now ranks the swing foot below the COM goal (issue 19 item 7), so the
+    # palms lag their sensors a little more while the weight moves (4.9 cm measured; was 4.5)
+    assert worst_palm < 0.05, f"a palm was {worst_palm * 100:.1f} cm off its sensor"
     pel = loop.figure.site_world("pelvis", "centre")[:3, 3]
     assert abs(pel[2] - 0.40) < 0.02 and abs(pel[0]) < 0.05  # the body went forward with the waist, onto it
     bf = loop.balance_frame_for({s: f.target for s, f in st.feet.items()})
