@@ -183,7 +183,9 @@ class Window:
         elif self.app.session_path is not None:
             session.save_session(self.app, self.app.session_path)
         else:
-            self.ui.prompt, self.ui.prompt_text = "save_as", "scene.env"
+            from jackpy.ui.panels.menu_bar import default_save_path
+
+            self.ui.prompt, self.ui.prompt_text = "save_as", default_save_path(self.app)
 
     # ------------------------------------------------------------------ loop
     def frame(self) -> None:

@@ -28,11 +28,11 @@ def draw(app: "App", ui: "UiState") -> None:
                 _prompt(ui, "open", "")
             if imgui.menu_item_simple("Save", "Ctrl+S"):
                 if app.session_path is None:
-                    _prompt(ui, "save_as", "scene.env")
+                    _prompt(ui, "save_as", default_save_path(app))
                 else:
                     _run(app, lambda: session.save_session(app, app.session_path))
             if imgui.menu_item_simple("Save as..."):
-                _prompt(ui, "save_as", str(app.session_path or "scene.env"))
+                _prompt(ui, "save_as", default_save_path(app))
             imgui.separator()
             if imgui.menu_item_simple("Import CAD..."):
                 _prompt(ui, "import", "")
@@ -73,6 +73,11 @@ def draw(app: "App", ui: "UiState") -> None:
     _draw_prompt(app, ui)
     _draw_recovery(app, ui)
     _draw_confirm(app, ui)
+
+
+def default_save_path(app: "App") -> str:
+    """Absolute Save-as default: the document's own path, else ``scene.env`` in the user's home."""
+    return str(Path(app.session_path).absolute() if app.session_path else Path.home().absolute() / "scene.env")
 
 
 def _prompt(ui: "UiState", kind: str, text: str) -> None:
@@ -147,7 +152,7 @@ def quit_choice(app: "App", ui: "UiState", choice: str) -> None:
     ui.confirm = None
     if choice == "save":
         if app.session_path is None:
-            _prompt(ui, "save_as", str(Path.home() / "scene.env"))
+            _prompt(ui, "save_as", default_save_path(app))
             ui.quit_after_save = True
             return
         _run(app, lambda: session.save_session(app, app.session_path))
