@@ -232,7 +232,9 @@ def collision_free_arm_reach(figure: Figure, target: np.ndarray, hand: str, chai
             u = rng.uniform(size=int(mask.sum()))
             lo_m, hi_m = np.maximum(lo[mask], -np.pi), np.minimum(hi[mask], np.pi)
             q[mask] = lo_m + u * (hi_m - lo_m)
-        figure.q = q
+            figure.q = q  # group angles stay as the last solve left them: part of the random start
+        else:
+            _seed(figure, q, groups)
         result = ik.solve(problem, max_iterations=max_iterations, tol_position=tolerance / 5)
         qs = figure.q.copy()
         d = dist(qs)
@@ -252,7 +254,8 @@ def collision_free_arm_reach(figure: Figure, target: np.ndarray, hand: str, chai
         if best[0] <= tolerance and best[1] == 0:
             break
     if best is not None and best[0] > tolerance:
-        best = _approach(figure, h, chain or h.start_joint, target, free, best, q0, tolerance, max_iterations)
+        best = _approach(figure, h, chain or h.start_joint, target, free, best, q0, groups, tolerance,
+                         max_iterations)
     figure.q = q0
     for n, a in groups.items():
         figure.groups[n].angles = a
@@ -263,8 +266,16 @@ def collision_free_arm_reach(figure: Figure, target: np.ndarray, hand: str, chai
     return ArmSearch(best[2], best[0], pos, status, n_free, any_best[0], any_best[1])
 
 
+def _seed(figure: Figure, q: np.ndarray, groups: dict[str, np.ndarray]) -> None:
+    """Start an IK at displacements ``q`` with the start posture's group angles (the IK starts a
+    joint group, e.g. the shoulder complex, from its group angles, not from the displacements)."""
+    figure.q = q.copy()
+    for n, a in groups.items():
+        figure.groups[n].angles = a.copy()
+
+
 def _approach(figure: Figure, h, chain: str, target: np.ndarray, free, best: tuple, q0: np.ndarray,
-              tolerance: float, max_iterations: int, levels: int = 4) -> tuple:
+              groups: dict[str, np.ndarray], tolerance: float, max_iterations: int, levels: int = 4) -> tuple:
     """Nearest free hand position on the line from the target back to the shoulder (the chain's
     first joint): bisection on the fraction of the way back, IK from the start posture and from the
     best free posture so far; returns the better of that and ``best`` as ``(distance, rank, q)``."""
@@ -280,7 +291,7 @@ def _approach(figure: Figure, h, chain: str, target: np.ndarray, free, best: tup
         problem.add(ik.Position(f"{h.segment}.{h.site}", aim, chain=chain))
         ok = False
         for seed in seeds:
-            figure.q = seed.copy()
+            _seed(figure, seed, groups)
             ik.solve(problem, max_iterations=max_iterations, tol_position=tolerance / 5)
             qs = figure.q.copy()
             at = figure.site_world(h.segment, h.site)[:3, 3]
