@@ -37,6 +37,8 @@ MID_SWING_CLEARANCE = 0.025
 SWAY = 0.025
 #: arm swing amplitude at the shoulder (rad) for the reference speed
 ARM_SWING = np.radians(16.0)
+#: fraction of the swing over which the toes, bent at toe-off, straighten
+TOES_RELEASE = 0.3
 #: standing still before the first step and after the last (s): weight shift, settle
 START_TIME = 0.35
 STOP_TIME = 0.45
@@ -133,6 +135,7 @@ def measure(figure) -> tuple[float, float, float, FootGeometry]:
     q, loc = figure.q, figure.location.copy()
     try:
         figure.q = np.zeros_like(q)
+        figure.location = np.eye(4)  # measured facing +z wherever the figure stands
         w = lambda seg, site: figure.site_world(seg, site)[:3, 3]  # noqa: E731
         floor = min(w("left_foot", "heel")[1], w("left_foot", "ball")[1])
         hip = w("pelvis", "left_hip")
@@ -220,7 +223,8 @@ def swing_lift(p: GaitParams, start_pitch: float, end_pitch: float = PITCH_HS) -
             T = foot_transform(p, 0.0, 0.0, 0.0, swing_pitch(u, start_pitch, end_pitch), "left")
             a = T[:3, :3] @ p.foot.ankle + T[:3, 3]
             y = a0[1] + float(smooth(u)) * (a1[1] - a0[1]) + lift * np.sin(np.pi * u)
-            low = float(np.min((T[:3, :3] @ sole)[1] + T[1, 3] + (y - a[1])))
+            pts = sole if u >= 0.5 * TOES_RELEASE else sole[:, :2]  # bent toes: held on their own goal
+            low = float(np.min((T[:3, :3] @ pts)[1] + T[1, 3] + (y - a[1])))
             if low < (p.clearance if abs(u - 0.5) < 1e-9 else 0.0):
                 ok = False
                 break

@@ -26,7 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from jackpy.locomotion.walk_gait import (DOUBLE_SUPPORT, FOOT_FLAT, HEEL_OFF, MAX_LEG, MAX_PITCH, PITCH_HS, PITCH_TO,
-                                         SIDES, START_TIME, STOP_TIME, GaitParams, foot_transform,
+                                         SIDES, START_TIME, STOP_TIME, TOES_RELEASE, GaitParams, foot_transform,
                                          pelvis_drop, rot_y, smooth, swing_lift, swing_pitch)
 
 
@@ -76,10 +76,6 @@ def _ankle(p: GaitParams, T: np.ndarray, side: str) -> np.ndarray:
 def _angle_lerp(a: float, b: float, s: float) -> float:
     d = (b - a + np.pi) % (2.0 * np.pi) - np.pi
     return a + s * d
-
-
-#: fraction of the swing over which the toes, bent at toe-off, straighten
-TOES_RELEASE = 0.3
 
 
 class Walk:

@@ -30,6 +30,7 @@ class WalkSolver:
         q0, loc0 = figure.q, figure.location.copy()
         figure.q = np.zeros_like(q0)
         figure.reroot("pelvis", "centre")
+        figure.location = np.eye(4)  # rest frames measured facing +z, whatever the figure did before
         self.pelvis_rest = figure.site_world("pelvis", "centre")[:3, :3].copy()
         floor = figure.site_world("left_foot", "heel")[1, 3]
         self.ball_rel = {}
