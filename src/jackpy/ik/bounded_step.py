@@ -74,18 +74,23 @@ def bounded_step(J: np.ndarray, lam: float, c: np.ndarray, lower: np.ndarray, up
     step's; those not at a bound are ignored), a warm start of the search. ``tol`` is relative to
     ``max |c|``: multipliers above ``-tol max|c|`` count as non-negative. Without rows the search
     runs as one compiled loop when numba is installed (``compiled=False``: the numpy reference).
+    With rows the compiled box minimiser is tried first: when it meets every row it is also the
+    minimiser with them (the QP is strictly convex and the rows only cut its feasible set), so the
+    row-aware numpy search runs only when a row actually binds.
     """
     n = c.size
     d = np.zeros(n)
     if n == 0:
         return d, np.zeros(0, dtype=bool), 0
-    if compiled and _box_step_compiled is not None and (A is None or A.shape[0] == 0):
-        h = np.zeros(n, dtype=bool) if held is None else np.array(held, dtype=bool)
-        return _box_step_compiled(np.ascontiguousarray(J, dtype=float), float(lam), np.asarray(c, dtype=float),
-                                  np.asarray(lower, dtype=float), np.asarray(upper, dtype=float), h,
-                                  max_iterations, tol)
-    H = _Hessian(J, lam)
     rows_on = A is not None and A.shape[0] > 0
+    if compiled and _box_step_compiled is not None:
+        h = np.zeros(n, dtype=bool) if held is None else np.array(held, dtype=bool)
+        box = _box_step_compiled(np.ascontiguousarray(J, dtype=float), float(lam),
+                                 np.ascontiguousarray(c, dtype=float), np.ascontiguousarray(lower, dtype=float),
+                                 np.ascontiguousarray(upper, dtype=float), h, max_iterations, tol)
+        if not rows_on or np.all(A @ box[0] <= r + ROW_TOL):
+            return box
+    H = _Hessian(J, lam)
     fixed = upper - lower <= AT_BOUND
     at_lo, at_hi = lower >= -AT_BOUND, upper <= AT_BOUND
     held = fixed | (at_lo & (c > 0)) | (at_hi & (c < 0)) | (
