@@ -18,7 +18,7 @@ from pathlib import Path
 
 import numpy as np
 
-from jackpy.bench.runner import Case, Result, Timing
+from jackpy.bench.runner import Case, Result, Timing, time_calls
 
 MOCAP = Path("/work/shared/data/mocap") / "cmu_02_01_walk.bvh"
 
@@ -92,11 +92,7 @@ def _import_case(quick: bool) -> Result:
     bvh = read(str(MOCAP))
     fig = cast.make_figure("jack", {"human": "male:50"})
     loop = cast.loop_for(cast.make_figure("ref", {"human": "male:50"}))
-    base = []
-    for _ in range(20):
-        s = time.perf_counter()
-        loop.step()
-        base.append((time.perf_counter() - s) * 1e3)
+    base = time_calls(loop.step, repeat=20, warmup=0).median_ms
     t0 = time.perf_counter()
     tg, _, _ = targets_for(fig, bvh, choose_map(bvh), 30.0)
     rt = Retargeter(fig)
@@ -108,7 +104,7 @@ def _import_case(quick: bool) -> Result:
         samples.append((time.perf_counter() - s) * 1e3)
     total = time.perf_counter() - t0
     timing = Timing(np.array(samples))
-    return Result("bvh-import", timing.median_ms, timing.p90_ms, float(np.median(base)),
+    return Result("bvh-import", timing.median_ms, timing.p90_ms, base,
                   {"frames": n, "frames_per_s": n / total, "source": MOCAP.name})
 
 

@@ -14,7 +14,7 @@ import time
 
 import numpy as np
 
-from jackpy.bench.runner import Case, Result, Timing
+from jackpy.bench.runner import Case, Result, Timing, time_calls
 
 
 def _walk_case(quick: bool) -> Result:
@@ -26,11 +26,7 @@ def _walk_case(quick: bool) -> Result:
     distance = 2.0 if quick else 10.0
     fig = cast.make_figure("jack", {"human": "male:50", "position": [0.0, -1.0], "heading_deg": 180.0})
     loop = cast.loop_for(cast.make_figure("ref", {"human": "male:50"}))
-    base = []
-    for _ in range(20):
-        s = time.perf_counter()
-        loop.step()
-        base.append((time.perf_counter() - s) * 1e3)
+    base = time_calls(loop.step, repeat=20, warmup=0).median_ms
     t0 = time.perf_counter()
     p = GaitParams.for_figure(fig)
     steps = footsteps.from_path(p, [(0.0, -1.0), (0.0, -1.0 - distance)])
@@ -45,7 +41,7 @@ def _walk_case(quick: bool) -> Result:
         samples.append((time.perf_counter() - s) * 1e3)
     total = time.perf_counter() - t0
     timing = Timing(np.array(samples))
-    return Result("walk-plan", timing.median_ms, timing.p90_ms, float(np.median(base)),
+    return Result("walk-plan", timing.median_ms, timing.p90_ms, base,
                   {"metres": distance, "steps": len(steps) - 2, "frames": len(frames), "plan_ms": plan_ms,
                    "total_s": total, "frames_per_s": len(frames) / total})
 

@@ -47,7 +47,7 @@ from jackpy.atomic import atomic_write_text, clean_stale_temps
 from jackpy.errors import JackpyError, SessionError
 from jackpy.peabody import Environment, Figure
 from jackpy.peabody.reader import read_environment, read_figures
-from jackpy.peabody.writer import environment_to_text
+from jackpy.peabody.writer import environment_to_text, relocator
 from jackpy.scene.cad import CADObject, import_cad
 
 if TYPE_CHECKING:
@@ -180,7 +180,7 @@ def save(doc: Document, path: str | os.PathLike[str]) -> Path:
     env, wrote_psurf = _writable(doc.env, path, doc.scene_dir, generation)
     out_dir = path.absolute().parent
     base = Path(doc.scene_dir) if doc.scene_dir is not None else out_dir
-    text = environment_to_text(env, base, relocate=_relocator(doc.scene_dir, out_dir))
+    text = environment_to_text(env, base, relocate=relocator(doc.scene_dir, out_dir))
     data = session_dict(doc, generation if wrote_psurf else None)
     line = json.dumps(data, separators=(",", ":"), allow_nan=False).replace("/", "\\/")
     atomic_write_text(path, text.rstrip("\n") + "\n\n" + MARK + line + "\n")
@@ -188,20 +188,6 @@ def save(doc: Document, path: str | os.PathLike[str]) -> Path:
     sidecar_path(path).unlink(missing_ok=True)
     remove_leftovers(path, keep=generation if wrote_psurf else None, legacy_in_use=False)
     return path
-
-
-def _relocator(source_dir: str | os.PathLike[str] | None, out_dir: Path):
-    """Map a path relative to ``source_dir`` to one relative to ``out_dir`` (identity if same)."""
-    if source_dir is None or Path(source_dir).resolve() == out_dir.resolve():
-        return lambda p: p
-
-    def relocate(p: str) -> str:
-        if os.path.isabs(p):
-            return p
-        full = os.path.abspath(os.path.join(source_dir, p))
-        return Path(os.path.relpath(full, out_dir.resolve())).as_posix()
-
-    return relocate
 
 
 def _writable(env: Environment, path: Path, source_dir: Path | None, generation: str) -> tuple[Environment, bool]:

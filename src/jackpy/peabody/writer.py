@@ -183,7 +183,7 @@ def _figure_text(fig: Figure, relocate: Callable[[str], str]) -> str:
     return "\n".join(lines) + "\n"
 
 
-def _relocator(source_dir: str | os.PathLike[str] | None, out_dir: Path) -> Callable[[str], str]:
+def relocator(source_dir: str | os.PathLike[str] | None, out_dir: Path) -> Callable[[str], str]:
     """Map a path relative to ``source_dir`` to one relative to ``out_dir`` (identity if same)."""
     if source_dir is None or Path(source_dir).resolve() == out_dir.resolve():
         return lambda p: p
@@ -211,7 +211,7 @@ def write_figures(path: str | os.PathLike[str], figures: Iterable[Figure], *,
     when given, names are rewritten relative to the new file's directory.
     """
     out_dir = Path(path).absolute().parent
-    atomic_write_text(path, figures_to_text(figures, relocate=_relocator(source_dir, out_dir)))
+    atomic_write_text(path, figures_to_text(figures, relocate=relocator(source_dir, out_dir)))
 
 
 def environment_to_text(env: Environment, base_dir: str | os.PathLike[str], *,
@@ -255,4 +255,4 @@ def write_environment(path: str | os.PathLike[str], env: Environment, *,
     """
     out_dir = Path(path).absolute().parent
     base = Path(source_dir) if source_dir is not None else out_dir
-    atomic_write_text(path, environment_to_text(env, base, relocate=_relocator(source_dir, out_dir)))
+    atomic_write_text(path, environment_to_text(env, base, relocate=relocator(source_dir, out_dir)))
