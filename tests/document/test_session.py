@@ -316,20 +316,29 @@ def test_random_kill_9_during_saves_leaves_a_whole_session(tmp_path):
 
     app, path, a, b = _two_states(tmp_path)
     rng = np.random.default_rng(11)
-    _back_to_a(tmp_path)
-    t0 = time.perf_counter()
-    session.save_session(app, path, remember=False)
-    t_save = time.perf_counter() - t0
-    outcomes, leftovers = [], 0
-    for trial in range(60):
-        _back_to_a(tmp_path)
+
+    def child_save() -> int:
         pid = os.fork()
         if pid == 0:  # the child saves B over A
             try:
                 session.save_session(app, path, remember=False)
             finally:
                 os._exit(0)
-        time.sleep(rng.uniform(0.0, 1.1 * t_save))
+        return pid
+
+    # how long a save takes in a forked child (copy-on-write pages make it slower than in the parent)
+    t_save = 0.0
+    for _ in range(3):
+        _back_to_a(tmp_path)
+        t0 = time.perf_counter()
+        os.waitpid(child_save(), 0)
+        t_save = max(t_save, time.perf_counter() - t0)
+    outcomes, leftovers = [], 0
+    for trial in range(60):
+        _back_to_a(tmp_path)
+        pid = child_save()
+        # kill moments spread over [0, 2 t_save], jittered: both sides of the commit get hit
+        time.sleep(2.0 * t_save * (trial + rng.uniform(0.0, 1.0)) / 60)
         os.kill(pid, signal.SIGKILL)
         os.waitpid(pid, 0)
         leftovers += sum(1 for p in tmp_path.joinpath("work").rglob("*.tmp"))
