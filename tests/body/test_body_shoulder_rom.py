@@ -3,8 +3,8 @@ extension 60, abduction 180, horizontal flexion 135 and horizontal extension 45 
 
 The limit search moves along one group angle to the edge of the group's feasible set
 (``JointGroup.is_feasible``: box plus the linear rows ``A z <= b``), then measures the arm by FK.
-Horizontal extension at 90 deg elevation is a known gap (67.5 deg, see docs/body.md "Shoulder range
-of motion"): a strict xfail, so a fix makes it fail until the mark is removed.
+Behind the body the limit is non-convex (two limit pieces, jackpy.body.shoulder), so extension,
+horizontal extension and abduction all meet AAOS.
 """
 
 import numpy as np
@@ -84,19 +84,40 @@ def test_horizontal_flexion_at_90_elevation_is_135(fig):
     assert _horizontal_deg(arm) == pytest.approx(135.0, abs=10.0)
 
 
-def test_horizontal_extension_at_90_elevation_measured(fig):
-    """What the figure allows today, by FK: 67.5 deg behind the frontal plane (documented gap)."""
+def test_horizontal_extension_at_90_elevation_is_aaos_45(fig):
     g = fig.groups[f"{SIDE}_shoulder_complex"]
     theta = _edge(g, {0: np.pi / 2}, 1, 0.0, -np.pi)
     arm = _pose(fig, np.pi / 2, theta)
     assert _elevation_deg(arm) == pytest.approx(90.0, abs=1e-6)
-    assert -_horizontal_deg(arm) == pytest.approx(67.5, abs=0.5)
+    assert -_horizontal_deg(arm) == pytest.approx(45.0, abs=10.0)
 
 
-@pytest.mark.xfail(strict=True, reason="needs a non-convex (elevation, abduction) limit; the group's "
-                   "linear rows A z <= b bound a convex set (docs/body.md, Shoulder range of motion)")
-def test_horizontal_extension_at_90_elevation_is_aaos_45(fig):
+def test_the_limit_behind_the_body_is_not_convex(fig):
+    """Extension and abduction are allowed, their midpoint in (theta, phi) is not: a convex limit
+    (box plus linear rows) could not give AAOS extension, horizontal extension and abduction at once."""
     g = fig.groups[f"{SIDE}_shoulder_complex"]
-    theta = _edge(g, {0: np.pi / 2}, 1, 0.0, -np.pi)
-    assert -_horizontal_deg(_pose(fig, np.pi / 2, theta)) == pytest.approx(45.0, abs=10.0)
+    ext, abd = np.radians([60.0, -90.0, 0.0]), np.radians([180.0, 0.0, 0.0])
+    assert g.is_feasible(ext) and g.is_feasible(abd)
+    assert not g.is_feasible(0.5 * (ext + abd))
 
+
+def test_ik_reaches_behind_the_body_and_then_up_sideways(fig):
+    """One IK problem, solved frame after frame (warm, as the document does): first a hand target
+    behind the body (the extension piece), then up at 150 deg in the frontal plane (the abduction
+    piece, outside the first one); the solver re-chooses the piece at each solve's start."""
+    from jackpy import ik
+
+    f = make_human("male", 50)
+    g = f.groups[f"{SIDE}_shoulder_complex"]
+    sh = f.site_world(f"{SIDE}_upper_arm", "base")[:3, 3]
+    reach = np.linalg.norm(f.site_world(f"{SIDE}_palm", "base")[:3, 3] - sh)
+    behind = sh + 0.95 * reach * np.array([0.0, -np.cos(np.radians(55)), -np.sin(np.radians(55))])
+    side_up = sh + 0.95 * reach * np.array([np.sin(np.radians(150)), -np.cos(np.radians(150)), 0.0])
+    prob = ik.Problem(f)
+    goal = prob.add(ik.Position(f"{SIDE}_palm.base", behind, chain=f"{SIDE}_clavicle"))
+    for target in (behind, side_up):
+        goal.target = target
+        for _ in range(6):  # frames: each solve starts from the last posture
+            ik.solve(prob)
+        assert g.is_feasible(g.angles)
+        assert np.linalg.norm(f.site_world(f"{SIDE}_palm", "base")[:3, 3] - target) < 0.03

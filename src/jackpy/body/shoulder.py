@@ -27,8 +27,12 @@ is world x_b = +z, y_b = -x, z_b = -y; the right arm mirrors the axes):
 
 Limits are globographic **[proposal from AAOS ranges]**: 0 ≤ ϕ ≤ 180°, -90° ≤ θ ≤ 135°, twist -90°
 (external) to 70° (internal) about the anatomical neutral (AAOS 1965: external rotation 90, internal
-70), and two linear cuts ``A @ (ϕ, θ, τ) <= b``: behind the body elevation
-falls to 60° at θ = -90° (ϕ - 4/3 θ ≤ 180°), across the body to 150° at θ = 135° (ϕ + 2/3 θ ≤ 240°).
+70); across the body elevation falls to 150° at θ = 135° (the linear row ϕ + 2/3 θ ≤ 240°). Behind
+the body the boundary runs through AAOS extension (θ = -90°, ϕ = 60°), horizontal extension at 90°
+elevation (θ = -45°, ϕ = 90°) and abduction (θ = 0°, ϕ = 180°); those three bend the boundary the
+way no convex set can, so it is the non-convex limit ``ϕ ≤ max(120° + 2/3 θ, 180° + 2 θ)``: two
+limit pieces (:attr:`ShoulderDriver.limit_pieces`, see :class:`jackpy.peabody.groups.JointGroup`),
+each one row, the angles inside at least one.
 """
 
 from __future__ import annotations
@@ -41,8 +45,12 @@ from jackpy.peabody.groups import JointGroup, register_driver
 SHOULDER_ANGLES = ("elevation", "abduction", "twist")
 SHOULDER_LOWER = np.radians([0.0, -90.0, -90.0])
 SHOULDER_UPPER = np.radians([180.0, 135.0, 70.0])
-SHOULDER_A = np.array([[1.0, -4.0 / 3.0, 0.0], [1.0, 2.0 / 3.0, 0.0]])
-SHOULDER_B = np.radians([180.0, 240.0])
+SHOULDER_A = np.array([[1.0, 2.0 / 3.0, 0.0]])
+SHOULDER_B = np.radians([240.0])
+#: the boundary behind the body as two convex pieces (ϕ - 2/3 θ ≤ 120° or ϕ - 2 θ ≤ 180°): through
+#: AAOS (1965) extension 60°, horizontal extension 45° at 90° elevation, abduction 180°
+SHOULDER_PIECES = ((np.array([[1.0, -2.0 / 3.0, 0.0]]), np.radians([120.0])),
+                   (np.array([[1.0, -2.0, 0.0]]), np.radians([180.0])))
 
 
 def allocate(phi_deg: float, theta_deg: float) -> tuple[float, float, float, float]:
@@ -78,6 +86,8 @@ class ShoulderDriver:
 
     #: the driver kind in Peabody files (``driver = shoulder()``; jackpy.peabody.groups registry)
     kind = "shoulder"
+    #: the non-convex limit behind the body (the group takes it from here, so files keep it)
+    limit_pieces = SHOULDER_PIECES
 
     def to_dict(self) -> dict[str, float]:
         """No parameters: the allocation is the book's (eq. 2.20-2.23)."""

@@ -206,6 +206,9 @@ class Compiled:
         q = self.figure.q if q is None else q
         x = np.concatenate([q[self.vm.free_dofs]] + [g.angles for g, _, _ in self.vm.group_slices])
         z = x[self.vidx] / self.scale
+        if self.vm.has_pieces:  # a non-convex group limit: the rows of its piece at the current angles
+            self.A_x, self.b_x = self.vm.linear_constraints()
+            self._A_z = (self.A_x[:, self.vidx] * self.scale)[self._row_keep]
         if self.A_x.shape[0]:
             rest = x.copy()
             rest[self.vidx] = 0.0

@@ -2,7 +2,8 @@
 
 A :class:`JointGroup` drives its member joints from a few *group angles* ``theta`` through a
 *driver*; the group angles are limited by a box and by linear inequalities ``A @ theta <= b``
-(eq. 2.1). Member joint angles are hidden outside the group: the IK and the UI move the group
+(eq. 2.1). A driver may add a non-convex limit as *pieces* (its ``limit_pieces``): the angles must
+then also meet every row of at least one piece. Member joint angles are hidden outside the group: the IK and the UI move the group
 angles. :class:`VariableMap` turns a figure with groups into one vector of free variables ``x``
 (ungrouped DOFs, then each group's angles) with ``q(x)``, ``dq/dx`` and the linear constraints.
 """
@@ -34,6 +35,10 @@ class Driver(Protocol):
     def jacobian(self, theta: np.ndarray) -> np.ndarray:
         """d(member displacements)/d(theta), (m, n)."""
         ...
+
+
+#: a convex piece of a non-convex group limit: rows ``A`` (r, n) and bounds ``b`` (r,), radians
+LimitPiece = tuple[np.ndarray, np.ndarray]
 
 
 #: a driver parameter as a file can hold it
@@ -117,7 +122,11 @@ def driver_batch(driver: Driver, thetas: np.ndarray) -> np.ndarray:
 class JointGroup:
     """Joints moved as one unit by ``driver`` from ``angles`` (radians/metres).
 
-    ``lower``/``upper`` bound each group angle; ``A @ angles <= b`` adds linear limits.
+    ``lower``/``upper`` bound each group angle; ``A @ angles <= b`` adds linear limits. ``pieces``
+    (taken from the driver's ``limit_pieces`` when it has them, so a file's ``driver = KIND()`` brings
+    them back) make the limit non-convex: the angles must also meet one piece's rows. Every piece has
+    the same number of rows; :meth:`rows_at` gives the static rows plus the piece chosen at given
+    angles, the convex set the IK projects onto for one solve (re-chosen at the next).
     """
 
     name: str
@@ -129,9 +138,16 @@ class JointGroup:
     A: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)))
     b: np.ndarray = field(default_factory=lambda: np.zeros(0))
     angles: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    pieces: list[LimitPiece] = field(default_factory=list)
 
     def __post_init__(self) -> None:
         n = len(self.angle_names)
+        if not self.pieces:
+            self.pieces = list(getattr(self.driver, "limit_pieces", ()))
+        self.pieces = [(np.asarray(a, dtype=float).reshape(-1, n), np.asarray(b, dtype=float).reshape(-1))
+                       for a, b in self.pieces]
+        if len({a.shape[0] for a, _ in self.pieces}) > 1 or any(a.shape[0] != b.size for a, b in self.pieces):
+            raise FigureError(f"group {self.name!r}: limit pieces need the same number of rows and bounds")
         self.lower = np.asarray(self.lower, dtype=float).reshape(n)
         self.upper = np.asarray(self.upper, dtype=float).reshape(n)
         self.A = np.asarray(self.A, dtype=float).reshape(-1, n)
@@ -151,13 +167,30 @@ class JointGroup:
         ok = np.all((thetas >= self.lower - tol) & (thetas <= self.upper + tol), axis=1)
         if self.A.size:
             ok &= np.all(thetas @ self.A.T <= self.b + tol, axis=1)
+        if self.pieces:
+            ok &= np.any([np.all(thetas @ a.T <= b + tol, axis=1) for a, b in self.pieces], axis=0)
         return ok
 
     def is_feasible(self, theta: np.ndarray, tol: float = 1e-9) -> bool:
-        """True when ``theta`` respects the box and the linear limits."""
+        """True when ``theta`` respects the box, the linear limits and one limit piece."""
+        return bool(self.feasible_rows(np.asarray(theta, dtype=float).reshape(1, -1), tol)[0])
+
+    def piece_at(self, theta: np.ndarray) -> int:
+        """Index of the limit piece for angles ``theta``: the one whose nearest row is farthest away
+        (largest slack over the row norms; the least violated when outside all). -1 without pieces."""
+        if not self.pieces:
+            return -1
         theta = np.asarray(theta, dtype=float)
-        ok = bool(np.all(theta >= self.lower - tol) and np.all(theta <= self.upper + tol))
-        return ok and bool(np.all(self.A @ theta <= self.b + tol))
+        slack = [np.min((b - a @ theta) / np.linalg.norm(a, axis=1)) for a, b in self.pieces]
+        return int(np.argmax(slack))
+
+    def rows_at(self, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The convex limit at ``theta``: static rows ``A``, ``b`` plus those of :meth:`piece_at`."""
+        k = self.piece_at(theta)
+        if k < 0:
+            return self.A, self.b
+        a, b = self.pieces[k]
+        return np.vstack([self.A, a]), np.concatenate([self.b, b])
 
     def set_angles(self, figure: Figure, theta: np.ndarray) -> None:
         """Set the group angles and drive the member joints; infeasible angles raise FigureError."""
@@ -233,15 +266,23 @@ class VariableMap:
             m[np.ix_(idx, np.arange(sl.start, sl.stop))] = g.driver.jacobian(x[sl])
         return m
 
+    @property
+    def has_pieces(self) -> bool:
+        """True when some group has a non-convex (piecewise) limit: :meth:`linear_constraints`
+        then depends on the current group angles."""
+        return any(g.pieces for g, _, _ in self.group_slices)
+
     def linear_constraints(self) -> tuple[np.ndarray, np.ndarray]:
-        """All groups' ``A x <= b`` rows over the full variable vector."""
+        """All groups' ``A x <= b`` rows over the full variable vector, with each piecewise group's
+        piece chosen at its current angles (:meth:`JointGroup.rows_at`)."""
         rows, rhs = [], []
         for g, _, sl in self.group_slices:
-            if g.A.size:
-                a = np.zeros((g.A.shape[0], self.nx))
-                a[:, sl] = g.A
+            ga, gb = g.rows_at(g.angles)
+            if ga.size:
+                a = np.zeros((ga.shape[0], self.nx))
+                a[:, sl] = ga
                 rows.append(a)
-                rhs.append(g.b)
+                rhs.append(gb)
         if not rows:
             return np.zeros((0, self.nx)), np.zeros(0)
         return np.vstack(rows), np.concatenate(rhs)
