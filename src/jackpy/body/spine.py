@@ -26,6 +26,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from jackpy.body import spine_kernel
 from jackpy.body.limits import spine_levels
 from jackpy.errors import FigureError
 from jackpy.peabody.groups import JointGroup, register_driver
@@ -36,6 +37,7 @@ SPINE_ANGLES = ("flexion", "lateral", "axial")
 SPINE_DOFS = ("axial", "lateral", "flexion")
 SPINE_AXES = {"axial": (0.0, 1.0, 0.0), "lateral": (0.0, 0.0, -1.0), "flexion": (1.0, 0.0, 0.0)}
 _DOF_INDEX = {a: SPINE_DOFS.index(a) for a in SPINE_ANGLES}
+_KERNEL_DOFS = np.array([_DOF_INDEX[a] for a in SPINE_ANGLES])
 
 
 def distribute(current: np.ndarray, rest: np.ndarray, lower: np.ndarray, upper: np.ndarray, target: float,
@@ -246,6 +248,13 @@ class SpineDriver:
         cached = self._cache  # one read: the entry is replaced whole, never edited
         if cached is not None and cached[0] == key:
             return cached[1].copy(), cached[2].copy()
+        if self.zero_interpolation and spine_kernel.AVAILABLE:  # the same model as one compiled loop
+            o3, j3 = spine_kernel.spine_distribution(theta, self.rest, self.lower, self.upper, _KERNEL_DOFS,
+                                                     w.bottom, w.top, w.initiator, w.spread, w.resistor,
+                                                     w.resistance)
+            out, jac = o3.reshape(-1), j3.reshape(-1, len(SPINE_ANGLES))
+            self._cache = (key, out, jac)
+            return out.copy(), jac.copy()
         out = self.rest.copy()
         jac = np.zeros(out.shape + (len(SPINE_ANGLES),))
         for c, (a, t) in enumerate(zip(SPINE_ANGLES, np.asarray(theta, dtype=float))):
