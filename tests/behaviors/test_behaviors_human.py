@@ -56,14 +56,13 @@ GRIP_OBJECTS = {"power": (0.04, 0.15, True), "precision": (0.015, 0.10, True), "
                 "small disc": (0.03, 0.015, False), "tripod": (0.02, 0.10, True)}
 
 
-@pytest.mark.parametrize("grip", ["power", "precision", "disc", pytest.param("small disc", marks=pytest.mark.xfail(
-    strict=True, reason="since the hand follows the ANSUR II regression on stature (issue 19), the P50 man's "
-    "index stops 8 mm short of a 3 cm disc's rim in the small-disc grip (palm goal met to 0.3 mm, 0.15 deg): "
-    "the grip's offsets need retuning to the new hand")), "tripod"])
-def test_grasp_closes_digits_and_thumb_onto_a_cylinder(human, grip):
+@pytest.mark.parametrize("grip,sex,percentile", [("power", "male", 50), ("precision", "male", 50),
+                                                  ("disc", "male", 50), ("small disc", "male", 50),
+                                                  ("small disc", "female", 5), ("tripod", "male", 50)])
+def test_grasp_closes_digits_and_thumb_onto_a_cylinder(human, grip, sex, percentile):
     from jackpy.behaviors.grasp import GraspObject
 
-    f = body.make_human("male", 50)
+    f = body.make_human(sex, percentile)
     a = human_anatomy(f)
     lp = BehaviorLoop(f, a)
     palm = f.site_world(*a.hands["right"].palm)

@@ -25,7 +25,7 @@ grip           digits          preshape (thumb CMC abduction, flexion)          
 power          all five        fingers straight, thumb 0°, 15° (thenar on it)   12 mm off surface
 precision      thumb, index    fingers 15 %, others tucked, thumb 20°, 0°       7.5 cm off, 2 cm thumbwards
 disc           all five        fingers 10 %, thumb lateral 40°, 0°              3.5 cm off the face
-small disc     thumb+2         as disc, three digits, object 15 mm thumbwards   4 cm off the face
+small disc     thumb+2         as disc, three digits, object 5 mm thumbwards    3.5 cm off the face
 tripod         thumb+2         fingers 20 %, others tucked, thumb 20°, 0°       7.5 cm off, 2 cm thumbwards
 =============  ==============  ===============================================  ==================
 """
@@ -120,7 +120,9 @@ GRIP_TYPES: dict[str, GripType] = {
     "precision": GripType((0, 1), 0.15, 0.9, 0.075, across=0.02, thumb_cmc=(_D(20.0), 0.0), thumb_close=OPPOSE),
     "disc": GripType((0, 1, 2, 3, 4), 0.1, 0.0, 0.035, thumb_cmc=(_D(40.0), 0.0), thumb_close=LATERAL,
                      thumb_mode="lateral"),
-    "small disc": GripType((0, 1, 2), 0.1, 0.9, 0.04, across=0.015, thumb_cmc=(_D(40.0), 0.0), thumb_close=LATERAL,
+    # retuned to the ANSUR II hand (issue 19): contacts within 1 mm for male P50, female P5 and P50; the
+    # male P95's index stops 10 mm short of a 3 cm disc (the offsets are absolute, not scaled to the hand)
+    "small disc": GripType((0, 1, 2), 0.1, 0.9, 0.035, across=0.005, thumb_cmc=(_D(40.0), 0.0), thumb_close=LATERAL,
                            thumb_mode="lateral"),
     "tripod": GripType((0, 1, 2), 0.2, 0.9, 0.075, across=0.02, thumb_cmc=(_D(20.0), 0.0), thumb_close=OPPOSE),
 }
