@@ -3,7 +3,7 @@
 A path (points on the floor, x and z in metres) becomes a centre line (a Catmull-Rom spline
 through the points); it is sampled every step length, shortened on turns
 (``sl = sl_nominal·(1 − k·|Δψ|/45°)``, at least 0.3·sl_nominal) so that no step turns more than
-45°; the feet alternate at ± the foot spacing beside the centre line. The walk starts from
+45°; the feet alternate at ± half the step width beside the centre line. The walk starts from
 standing (feet side by side at the first point, facing along the path) and ends standing with
 the feet together at the last point, facing ``facing`` (the path's end direction when None);
 a turn at the end larger than 45° is done by turning steps on the spot.
@@ -88,7 +88,7 @@ def from_path(p: GaitParams, points, facing: float | None = None, first: str | N
     steps = standing(p, *c0, psi0, side)
     s_now, psi_prev = 0.0, psi0
     sl = p.step_length
-    w = p.foot.width
+    w = p.step_half_width  # walking steps on the narrower base; standing and stopping at foot.width
     # the first step is half a step (from standing), then full steps, shortened on turns
     target = 0.5 * sl
     while True:

@@ -33,8 +33,15 @@ PITCH_TO = np.radians(45.0)
 FOOT_FLAT = 0.08
 HEEL_OFF = 0.38
 #: lowest sole point above the floor at mid-swing (m) and the lateral pelvis sway (m) for H_REF
+#: (the sway puts the COM 2.1 cm toward the stance foot: Orendurff et al. 2004 measured a 4-5 cm
+#: peak-to-peak mediolateral COM excursion at 1.3 m/s)
 MID_SWING_CLEARANCE = 0.025
 SWAY = 0.025
+#: fraction of a step (from heel strike) where the sway crosses the centre line: mid double support
+SWAY_CROSSING = DOUBLE_SUPPORT
+#: step width for H_REF: ankle centre to ankle centre of walking footsteps (m); normal adult gait
+#: walks on a base of 7-12 cm, narrower than the standing feet (17 cm, the hips' width)
+STEP_WIDTH = 0.10
 #: arm swing amplitude at the shoulder (rad) for the reference speed
 ARM_SWING = np.radians(16.0)
 #: fraction of the swing over which the toes, bent at toe-off, straighten
@@ -92,6 +99,7 @@ class GaitParams:
     step_frequency: float
     hip_half_width: float  # λ: pelvis centre to a hip (m)
     foot: FootGeometry
+    step_half_width: float = 0.5 * STEP_WIDTH  # walking footstep ankle to the centre line (m)
     clearance: float = MID_SWING_CLEARANCE
     sway: float = SWAY
     arm_swing: float = ARM_SWING
@@ -114,7 +122,8 @@ class GaitParams:
         step = REF_STEP * H / H_ref
         speed = REF_SPEED * np.sqrt(H / H_ref) * speed_scale
         k = H / H_ref
-        return cls(H, L, step, speed / step, lam, foot, MID_SWING_CLEARANCE, SWAY * k, ARM_SWING)
+        half_width = min(0.5 * STEP_WIDTH * k, foot.width)
+        return cls(H, L, step, speed / step, lam, foot, half_width, MID_SWING_CLEARANCE, SWAY * k, ARM_SWING)
 
 
 _REF_H: list[float] = []

@@ -26,7 +26,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from jackpy.locomotion.walk_gait import (DOUBLE_SUPPORT, FOOT_FLAT, HEEL_OFF, MAX_LEG, MAX_PITCH, PITCH_HS, PITCH_TO,
-                                         SIDES, START_TIME, STOP_TIME, TOES_RELEASE, GaitParams, foot_transform,
+                                         SIDES, START_TIME, STOP_TIME, SWAY_CROSSING, TOES_RELEASE, GaitParams, foot_transform,
                                          pelvis_drop, rot_y, smooth, swing_lift, swing_pitch)
 
 
@@ -156,13 +156,12 @@ class Walk:
         T0, T1 = self._flat(cur, p0), self._flat(nxt, p1)
         d1, d3 = _ankle(p, T0, side), _ankle(p, T1, side)
         # stance foot: the other foot's latest footstep; mirror its ankle across the walking line
+        # α: along the stance heading, halfway between the stance ankle and the swing chord's middle
         other = nxt - 1
-        a_st = _ankle(p, self._flat(other, 0.0), st[other].side)
-        mid = 0.5 * (st[cur].point + st[nxt].point)
-        line = np.array([np.sin(st[other].psi), np.cos(st[other].psi)])
-        lateral = np.array([line[1], -line[0]])
-        off = float(np.dot(a_st[[0, 2]] - mid, lateral))
-        d2 = a_st[[0, 2]] - 2.0 * off * lateral
+        a_st = _ankle(p, self._flat(other, 0.0), st[other].side)[[0, 2]]
+        lateral = np.array([np.cos(st[other].psi), -np.sin(st[other].psi)])
+        off = float(np.dot(0.5 * (d1[[0, 2]] + d3[[0, 2]]) - a_st, lateral))
+        d2 = a_st + off * lateral
         s = float(smooth(u))
         top = (1 - s) ** 2 * d1[[0, 2]] + 2 * s * (1 - s) * d2 + s * s * d3[[0, 2]]
         y = d1[1] + s * (d3[1] - d1[1]) + swing_lift(p, p0, p1) * np.sin(np.pi * u)
@@ -174,36 +173,61 @@ class Walk:
         return T
 
     # -- pelvis ----------------------------------------------------------------------------
-    def _centre(self, t: float) -> tuple[np.ndarray, float, float | None, str, float]:
-        """Centre-site floor point, yaw, cycle fraction (None standing), stance side, sway."""
-        st, land, n = self.steps, self.land, len(self.steps)
+    def _centre(self, t: float) -> tuple[np.ndarray, float, float | None]:
+        """Centre-site floor point, yaw and cycle fraction (None standing)."""
+        land, n = self.land, len(self.steps)
         if n == 2 or t < START_TIME:
-            u = t / START_TIME
-            side = st[2].side if n > 2 else st[1].side
-            stance = "right" if side == "left" else "left"
-            return self.keys[0], self.key_dir[0], None, stance, float(smooth(u)) if n > 2 else 0.0
+            return self.keys[0], self.key_dir[0], None
         if t >= land[-1]:
-            return self.keys[-1], self.key_dir[-1], None, st[-1].side, 0.0
+            return self.keys[-1], self.key_dir[-1], None
         j = int(np.searchsorted(land[2:], t, side="right")) + 2  # footstep j is swinging in
         t0 = START_TIME if j == 2 else land[j - 1]
         u = (t - t0) / (land[j] - t0)
         c0, c1 = self.keys[j - 2], self.keys[j - 1]
         a0, a1 = self.key_dir[j - 2], self.key_dir[j - 1]
         pt, yaw = _hermite_at_arc(c0, c1, a0, a1, u)
-        stance = st[j - 1].side
-        # from the weight shift (full sway) on, toward the stance foot, back to the middle at the end
-        sway = float(np.cos(0.5 * np.pi * u)) if j == 2 else float(np.sin(np.pi * u))
-        return pt, yaw, 0.5 * u, stance, sway
+        return pt, yaw, 0.5 * u
+
+    def _sway_amplitude(self, j: int) -> float:
+        """Signed (+ left) sway of step j toward its stance foot σ_{j-1}: ``p.sway`` for a foot at
+        half the step width from the step's centre line (through the middle of its two centre-site
+        keys), in proportion for wider ones (the first step from standing and the stop shift the
+        weight further, onto a foot at the standing width)."""
+        st, p = self.steps, self.p
+        key = 0.5 * (self.keys[j - 2] + self.keys[j - 1])
+        a = _angle_lerp(self.key_dir[j - 2], self.key_dir[j - 1], 0.5)
+        off = float(np.dot(st[j - 1].point - key, [np.cos(a), -np.sin(a)]))
+        return p.sway * off / p.step_half_width
+
+    def sway(self, t: float) -> float:
+        """Lateral shift of the centre site (m, + left of the path) toward the stance foot: a
+        sine over each single stance that crosses the centre line in the middle of each double
+        support (``SWAY_CROSSING`` of the step), as the COM does in human walking."""
+        land, n = self.land, len(self.steps)
+        if n == 2:
+            return 0.0
+        if t < START_TIME:  # the weight shift onto the first stance foot
+            return self._sway_amplitude(2) * float(smooth(t / START_TIME))
+        if t >= land[-1]:  # the stop: eases back to the middle
+            u = min(1.0, (t - land[-1]) / STOP_TIME)
+            return self._sway_at(n - 1, 1.0) * (1.0 - float(smooth(u)))
+        j = int(np.searchsorted(land[2:], t, side="right")) + 2
+        t0 = START_TIME if j == 2 else land[j - 1]
+        return self._sway_at(j, (t - t0) / (land[j] - t0))
+
+    def _sway_at(self, j: int, u: float) -> float:
+        phi = SWAY_CROSSING
+        if j == 2:  # from the full weight shift at the first step's start
+            return self._sway_amplitude(2) * float(np.sin(np.pi * (0.5 + (0.5 - phi) * u)))
+        if u < phi:  # the previous stance's sine, crossing the centre line
+            return self._sway_amplitude(j - 1) * float(np.sin(np.pi * (1.0 + u - phi)))
+        return self._sway_amplitude(j) * float(np.sin(np.pi * (u - phi)))
 
     def pelvis(self, t: float, feet: dict[str, np.ndarray], phase: dict[str, str]) -> np.ndarray:
         p = self.p
-        pt, yaw, cyc, stance, sway = self._centre(t)
+        pt, yaw, cyc = self._centre(t)
         lat = np.array([np.cos(yaw), -np.sin(yaw)])  # left of the heading, top view (x, z)
-        sgn = 1.0 if stance == "left" else -1.0
-        # the stop: sway eases out after the last heel strike
-        if cyc is None and t >= self.land[-1] and len(self.steps) > 2:
-            sway = 0.0
-        pt = pt + sgn * p.sway * sway * lat
+        pt = pt + self.sway(t) * lat
         stand = p.hip_height - 0.003 * p.hip_height
         if cyc is None:
             if t < START_TIME:

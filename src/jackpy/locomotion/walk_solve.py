@@ -13,10 +13,14 @@ from collections.abc import Callable
 
 import numpy as np
 
-from jackpy.locomotion.walk_gait import SIDES, GaitParams, rot_x, toes_flat_tip
+from jackpy.locomotion.walk_gait import MAX_PITCH, SIDES, GaitParams, rot_x, toes_flat_tip
 from jackpy.locomotion.walk_path import FrameTargets, Walk
 
 ITERATIONS = 40
+#: a stance foot's ball site within this of its target (m) is reached; else the heel rises by
+#: HEEL_RAISE_STEP (rad) at a time
+REACHED = 1e-3
+HEEL_RAISE_STEP = np.radians(2.0)
 
 
 class WalkSolver:
@@ -96,12 +100,47 @@ class WalkSolver:
             g[f"{s}_knee"].target = 0.5 * (hip + ank) + 0.04 * fwd
         solve(self.legs, max_iterations=ITERATIONS, tol_position=1e-4, tol_angle=0.2)
         for s in SIDES:
+            if tg.phase[s] in ("flat", "ball"):
+                self._raise_heel_until_reached(tg, s)
+        for s in SIDES:
             sh = self.shoulder_rel[s]
             wr = self.wrist_rel[s] - sh
             R = rot_x(-tg.arm[s])
             w_local = sh[:3] + R @ wr[:3]
             g[f"{s}_wrist"].target = (loc @ np.append(w_local, 1.0))[:3]
         solve(self.arms, max_iterations=10, tol_position=5e-4, tol_angle=1.0)
+
+
+    def _ball_error(self, tg: FrameTargets, side: str) -> float:
+        """Distance (m) of the foot's ball site from its target."""
+        want = (tg.feet[side] @ self.ball_rel[side])[:3, 3]
+        return float(np.linalg.norm(self.figure.site_world(f"{side}_foot", "ball")[:3, 3] - want))
+
+    def _raise_heel_until_reached(self, tg: FrameTargets, side: str) -> None:
+        """The book's rule for a stance foot the leg cannot reach: roll it further about the
+        ball-of-foot joint (toes flat) until the solved foot meets its target. It binds where the
+        ankle reaches its dorsiflexion limit (20°) before the leg is stretched, as in the late stance
+        of a turning step. The raised foot is written back into ``tg`` (phase ``"ball"``)."""
+        from jackpy.ik import solve
+
+        if self._ball_error(tg, side) <= REACHED:
+            return
+        T0 = tg.feet[side]
+        pitch0 = float(np.arcsin(np.clip(-T0[1, 2], -1.0, 1.0)))
+        mtp = self.p.foot.mtp * np.array([-1.0 if side == "right" else 1.0, 1.0, 1.0])
+        pivot = T0[:3, :3] @ mtp + T0[:3, 3]
+        for pitch in np.arange(pitch0 + HEEL_RAISE_STEP, MAX_PITCH + 1e-9, HEEL_RAISE_STEP):
+            T = T0.copy()
+            T[:3, :3] = T0[:3, :3] @ rot_x(pitch - pitch0)
+            T[:3, 3] = pivot - T[:3, :3] @ mtp
+            tg.feet[side] = T
+            self.goals[f"{side}_foot"].target = T @ self.ball_rel[side]
+            self.goals[f"{side}_tip"].target = toes_flat_tip(self.p, T, side)
+            solve(self.legs, max_iterations=ITERATIONS, tol_position=1e-4, tol_angle=0.2)
+            tg.phase[side] = "ball"
+            tg.toes_flat[side] = 1.0
+            if self._ball_error(tg, side) <= REACHED:
+                return
 
 
 def bake(figure, walk: Walk, fps: float, progress: Callable[[int, int], None] | None = None):
