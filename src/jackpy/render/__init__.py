@@ -14,10 +14,12 @@ from jackpy.render.mesh import Mesh, arrow, box, cone, cylinder, lathe, uv_spher
 from jackpy.render.offscreen import create_egl_context, offscreen_renderer
 from jackpy.render.projection import linear_depth, look_at, orthographic_matrix, perspective_matrix
 from jackpy.render.renderer import Renderer
-from jackpy.render.scene import DrawItem, GoalMarker, Grid, Lines, Scene, Spheres, Sticks, Triad
+from jackpy.render.scene import DrawItem, GoalMarker, Grid, Lines, Scene, SkinnedItem, Spheres, Sticks, Triad
+from jackpy.render.skinning import SkinnedMesh
 
 __all__ = [
-    "Body", "BodyRenderer", "DrawItem", "GoalMarker", "Grid", "Lines", "Mesh", "Renderer", "Scene", "Spheres",
+    "Body", "BodyRenderer", "DrawItem", "GoalMarker", "Grid", "Lines", "Mesh", "Renderer", "Scene", "SkinnedItem",
+    "SkinnedMesh", "Spheres",
     "Sticks", "Triad", "arrow", "box", "cone", "create_egl_context", "cylinder", "lathe", "linear_depth", "look_at",
     "offscreen_renderer", "orthographic_matrix", "perspective_matrix", "uv_sphere", "vertex_normals", "write_png",
 ]

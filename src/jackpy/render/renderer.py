@@ -21,6 +21,7 @@ multisampling costs several times the whole frame; there a frame that stays unch
 from __future__ import annotations
 
 import time
+from dataclasses import replace
 from pathlib import Path
 
 import moderngl
@@ -42,6 +43,7 @@ from jackpy.render.instancing import (
 from jackpy.render.image import write_png
 from jackpy.render.mesh import Mesh
 from jackpy.render.scene import Grid, Lines, Scene
+from jackpy.render.skinning import GpuSkinnedMesh, SkinnedMesh, bone_texels, stand_in
 
 KEY_LIGHT_DIRECTION = np.array([-0.45, 0.8, 0.55]) / np.linalg.norm([-0.45, 0.8, 0.55])
 """Direction towards the key light in world (front-left, above, for a figure facing +z)."""
@@ -163,6 +165,11 @@ class Renderer:
                                          fragment_shader=shaders.LINE_FRAGMENT)
         self._grid_program = ctx.program(vertex_shader=shaders.GRID_VERTEX,
                                          fragment_shader=shaders.GRID_FRAGMENT)
+        self._skin_program = ctx.program(vertex_shader=shaders.SKIN_VERTEX,
+                                         fragment_shader=shaders.MESH_FRAGMENT)
+        self._skin_pick_program = ctx.program(vertex_shader=shaders.SKIN_VERTEX,
+                                              fragment_shader=shaders.PICK_FRAGMENT)
+        self._skin_program["u_highlight_color"].value = HIGHLIGHT_COLOR
         self._mesh_program["u_highlight_color"].value = HIGHLIGHT_COLOR
         corners = np.array([-1, -1, 1, -1, 1, 1, -1, -1, 1, 1, -1, 1], np.float32)
         self._grid_vbo = ctx.buffer(corners.tobytes())
@@ -171,6 +178,8 @@ class Renderer:
         self._line_vbo: moderngl.Buffer | None = None
         self._line_vao: moderngl.VertexArray | None = None
         self._meshes: dict[str, _GpuMesh] = {}
+        self._skinned: dict[str, GpuSkinnedMesh] = {}
+        self._last_skins: list[tuple[str, np.ndarray]] = []
         self._mesh_version = 0
         for key, mesh in BUILTIN_MESHES.items():
             self.add_mesh(key, mesh)
@@ -239,14 +248,27 @@ class Renderer:
         self._mesh_version += 1
 
     def has_mesh(self, key: str) -> bool:
-        """Whether a mesh is cached under ``key``."""
-        return key in self._meshes
+        """Whether a mesh (plain or skinned) is cached under ``key``."""
+        return key in self._meshes or key in self._skinned
+
+    def add_skinned_mesh(self, key: str, mesh: SkinnedMesh, replace: bool = False) -> None:
+        """Upload skinned ``mesh`` under ``key`` (drawn by a :class:`SkinnedItem` of that key); an
+        existing key is kept unless ``replace``."""
+        if key in self._skinned:
+            if not replace:
+                return
+            self._skinned.pop(key).release()
+        self._skinned[key] = GpuSkinnedMesh(self.ctx, mesh)
+        self._mesh_version += 1
 
     def release(self) -> None:
         """Free every GPU resource of this renderer."""
         for mesh in self._meshes.values():
             mesh.release()
         self._meshes.clear()
+        for skinned in self._skinned.values():
+            skinned.release()
+        self._skinned.clear()
         for obj in self._framebuffers:
             obj.release()
         for _, objs in self._msaa.values():
@@ -254,7 +276,8 @@ class Renderer:
                 obj.release()
         self._msaa = {}
         for obj in (self._line_vao, self._line_vbo, self._grid_vao, self._grid_vbo, self._mesh_program,
-                    self._pick_program, self._line_program, self._grid_program):
+                    self._pick_program, self._line_program, self._grid_program, self._skin_program,
+                    self._skin_pick_program):
             if obj is not None:
                 obj.release()
 
@@ -272,11 +295,15 @@ class Renderer:
         unless it has now been still for :attr:`refine_after_s` and is redrawn at
         :attr:`still_samples`.
         """
-        unknown = {i.mesh for i in scene.items} - self._meshes.keys()
+        items, skinned_items = stand_in(scene.items, scene.skins)  # skins take their bones' items' looks
+        scene = replace(scene, items=items, skins=skinned_items)
+        unknown = ({i.mesh for i in scene.items} - self._meshes.keys()) | (
+            {s.mesh for s in scene.skins} - self._skinned.keys())
         if unknown:
             raise KeyError(f"meshes not uploaded: {sorted(unknown)}")
         batches = build_batches(scene)
-        key = _frame_key(scene, batches, view, projection, self._mesh_version)
+        skins = [(s.mesh, bone_texels(s, self._skinned[s.mesh].n_bones)) for s in scene.skins]
+        key = _frame_key(scene, batches, view, projection, self._mesh_version, skins)
         now = time.monotonic()
         if key != self._frame_key:
             self._frame_key, self._key_since = key, now
@@ -285,7 +312,7 @@ class Renderer:
             samples = self.still_samples
         else:
             return False
-        self._draw_frame(scene, batches, view, projection, samples)
+        self._draw_frame(scene, batches, skins, view, projection, samples)
         return True
 
     def refine(self) -> bool:
@@ -293,11 +320,11 @@ class Renderer:
         if self._last is None or self._last_scene is None or not self.refine_pending:
             return False
         batches, _, view, projection = self._last
-        self._draw_frame(self._last_scene, batches, view, projection, self.still_samples)
+        self._draw_frame(self._last_scene, batches, self._last_skins, view, projection, self.still_samples)
         return True
 
-    def _draw_frame(self, scene: Scene, batches: FrameBatches, view: np.ndarray, projection: np.ndarray,
-                    samples: int) -> None:
+    def _draw_frame(self, scene: Scene, batches: FrameBatches, skins: list[tuple[str, np.ndarray]],
+                    view: np.ndarray, projection: np.ndarray, samples: int) -> None:
         ctx, fbo = self.ctx, self._target(samples)
         centers = {k: m.center for k, m in self._meshes.items()}
         transparent = item_batches(back_to_front(batches.transparent, view, centers))
@@ -315,6 +342,7 @@ class Renderer:
 
         ctx.polygon_offset = (1.0, 1.0)
         self._draw(prog, batches.opaque)
+        self._draw_skins(self._skin_program, skins)
         ctx.polygon_offset = (0.0, 0.0)
         ctx.depth_func = "<="
         self._draw_wireframe(batches.wireframe)
@@ -348,24 +376,29 @@ class Renderer:
             ctx.copy_framebuffer(self._resolve_fbo, fbo)
         pickable = [i for i in batches.transparent if i.pick_id is not None]
         self._last = (batches, item_batches(pickable), np.array(view), np.array(projection))
+        self._last_skins = skins
         self._last_scene = scene
         self.drawn_samples = samples
         self.frames_drawn += 1
 
     def _set_mesh_uniforms(self, view: np.ndarray, projection: np.ndarray) -> None:
         rotation = np.asarray(view, float)[:3, :3]
-        for prog in (self._mesh_program, self._pick_program):
+        for prog in (self._mesh_program, self._pick_program, self._skin_program, self._skin_pick_program):
             prog["u_view"].write(_mat(view))
             prog["u_proj"].write(_mat(projection))
-        prog = self._mesh_program
-        prog["u_key_direction"].value = tuple(rotation @ KEY_LIGHT_DIRECTION)
-        prog["u_up"].value = tuple(rotation[:, 1])
-        prog["u_orthographic"].value = bool(projection[3, 3] == 1.0)
-        prog["u_flat"].value = False
+        for prog in (self._mesh_program, self._skin_program):
+            prog["u_key_direction"].value = tuple(rotation @ KEY_LIGHT_DIRECTION)
+            prog["u_up"].value = tuple(rotation[:, 1])
+            prog["u_orthographic"].value = bool(projection[3, 3] == 1.0)
+            prog["u_flat"].value = False
 
     def _draw(self, program: moderngl.Program, batches: list[InstanceBatch]) -> None:
         for batch in batches:
             self._meshes[batch.mesh].draw(program, batch.records)
+
+    def _draw_skins(self, program: moderngl.Program, skins: list[tuple[str, np.ndarray]]) -> None:
+        for key, texels in skins:
+            self._skinned[key].draw(program, texels)
 
     def _draw_wireframe(self, batches: list[InstanceBatch]) -> None:
         if not batches:
@@ -453,6 +486,7 @@ class Renderer:
         ctx.depth_func = "<"
         self._set_mesh_uniforms(view, projection)
         self._draw(self._pick_program, batches.opaque)
+        self._draw_skins(self._skin_pick_program, self._last_skins)
         self._draw(self._pick_program, transparent)
         ids = np.frombuffer(fbo.read(components=1, dtype="i4"), np.int32).reshape(h, w)[::-1]
         depth = np.frombuffer(fbo.depth_attachment.read(), np.float32).reshape(h, w)[::-1]
@@ -478,6 +512,7 @@ class Renderer:
         ctx.depth_func = "<"
         self._set_mesh_uniforms(view, projection)
         self._draw(self._pick_program, batches.opaque)
+        self._draw_skins(self._skin_pick_program, self._last_skins)
         self._draw(self._pick_program, transparent)
         value = np.frombuffer(fbo.read(viewport=(int(x), gl_y, 1, 1), components=1, dtype="i4"), np.int32)
         fbo.scissor = None
@@ -486,11 +521,13 @@ class Renderer:
 
 
 def _frame_key(scene: Scene, batches: FrameBatches, view: np.ndarray, projection: np.ndarray,
-               mesh_version: int) -> bytes:
-    """Bytes that change whenever the drawn image could: every instance record, transparent
-    item, line, the grid, background, camera and the cached meshes."""
+               mesh_version: int, skins: list[tuple[str, np.ndarray]] = ()) -> bytes:
+    """Bytes that change whenever the drawn image could: every instance record, skinned item's
+    bone texels, transparent item, line, the grid, background, camera and the cached meshes."""
     parts = [np.asarray(view, np.float64).tobytes(), np.asarray(projection, np.float64).tobytes(),
              repr((mesh_version, scene.grid, tuple(scene.background))).encode()]
+    for key, texels in skins:
+        parts += [b"S" + key.encode(), texels.tobytes()]
     for group in (batches.opaque, batches.wireframe):
         for b in group:
             parts += [b"%s:%d" % (b.mesh.encode(), len(b.records)), b.records.tobytes()]

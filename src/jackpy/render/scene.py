@@ -35,6 +35,24 @@ class DrawItem:
 
 
 @dataclass
+class SkinnedItem:
+    """A skinned mesh (see :meth:`Renderer.add_skinned_mesh`) posed by ``bones`` (b, 4, 4) world
+    skinning matrices (each maps rest positions to world, e.g. ``W_b @ inverse_bind_b``); per bone
+    its owned vertices' colour (one RGBA or (b, 4)), pick id and highlight. Always opaque.
+
+    ``bone_items``: per bone the mesh key of an opaque :class:`DrawItem` the skin stands in for
+    (a rigid segment surface). Such items are not drawn; their colour, pick id and highlight go to
+    the bone's vertices, so whatever recolours, highlights or removes items also acts on the skin."""
+
+    mesh: str
+    bones: np.ndarray
+    colors: Color | np.ndarray = (0.8, 0.8, 0.8, 1.0)
+    pick_ids: Sequence[int | None] | None = None
+    highlighted: Sequence[bool] | bool = False
+    bone_items: Sequence[str] | None = None
+
+
+@dataclass
 class Spheres:
     """Skeleton-mode balls: ``centers`` (N, 3) m, radius scalar or (N,) m, colour one or (N, 4)."""
 
@@ -110,6 +128,7 @@ class Scene:
     """Everything drawn in one frame."""
 
     items: list[DrawItem] = field(default_factory=list)
+    skins: list[SkinnedItem] = field(default_factory=list)
     spheres: list[Spheres] = field(default_factory=list)
     sticks: list[Sticks] = field(default_factory=list)
     triads: list[Triad] = field(default_factory=list)

@@ -33,6 +33,41 @@ void main() {
 }
 """
 
+SKIN_VERTEX = """
+#version 330 core
+// Linear-blend skinning: four bones per vertex. u_bones holds six RGBA32F texels per bone (row =
+// bone): the skinning matrix's four columns, the owned vertices' colour, then (pick id, highlight).
+uniform mat4 u_view;
+uniform mat4 u_proj;
+uniform sampler2D u_bones;
+in vec3 in_position;
+in vec3 in_normal;
+in ivec4 in_joints;
+in vec4 in_weights;
+in int in_owner;
+out vec3 v_position;
+out vec3 v_normal;
+out vec4 v_color;
+out float v_highlight;
+flat out int v_pick;
+mat4 bone(int b) {
+    return mat4(texelFetch(u_bones, ivec2(0, b), 0), texelFetch(u_bones, ivec2(1, b), 0),
+                texelFetch(u_bones, ivec2(2, b), 0), texelFetch(u_bones, ivec2(3, b), 0));
+}
+void main() {
+    mat4 m = in_weights.x * bone(in_joints.x) + in_weights.y * bone(in_joints.y)
+           + in_weights.z * bone(in_joints.z) + in_weights.w * bone(in_joints.w);
+    vec4 p = u_view * (m * vec4(in_position, 1.0));
+    v_position = p.xyz;
+    v_normal = mat3(u_view) * (mat3(m) * in_normal);  // bones are rigid: the blend is near-orthogonal
+    v_color = texelFetch(u_bones, ivec2(4, in_owner), 0);
+    vec4 extra = texelFetch(u_bones, ivec2(5, in_owner), 0);
+    v_highlight = extra.y;
+    v_pick = int(extra.x + 0.5);
+    gl_Position = u_proj * p;
+}
+"""
+
 MESH_FRAGMENT = """
 #version 330 core
 uniform vec3 u_key_direction;   // towards the key light, view space, unit

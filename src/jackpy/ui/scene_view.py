@@ -19,7 +19,8 @@ import numpy as np
 
 from jackpy.peabody import Environment, Figure, Segment
 from jackpy.scene.cad import CADObject
-from jackpy.render import DrawItem, GoalMarker, Lines, Scene, Spheres, Sticks, Triad
+from jackpy.body.skin import bone_matrices, skin_for
+from jackpy.render import DrawItem, GoalMarker, Lines, Scene, SkinnedItem, SkinnedMesh, Spheres, Sticks, Triad
 from jackpy.render.mesh import Mesh as RenderMesh
 
 if TYPE_CHECKING:
@@ -30,6 +31,8 @@ OBJECT_COLOR = (0.62, 0.64, 0.68, 1.0)
 CAD_COLOR = (0.55, 0.65, 0.80, 0.45)
 GOAL_COLOR = (1.0, 0.35, 0.1, 1.0)
 GOAL_DISABLED_COLOR = (0.5, 0.5, 0.5, 1.0)
+TERRAIN_MESH = "terrain"
+"""Mesh key of the document's terrain (see :meth:`SceneView.add_terrain`)."""
 GOAL_PICK_BASE = 1_000_000
 """Goal markers get pick ids from here on; segments count up from 1."""
 
@@ -143,6 +146,9 @@ class SceneView:
     def mesh_key(self, figure: str, segment: str) -> str:
         return f"fig:{figure}/{segment}"
 
+    def skin_key(self, figure: str) -> str:
+        return f"skin:{figure}"
+
     def upload(self, renderer: "Renderer", env: Environment) -> None:
         """Upload every segment mesh that the renderer lacks or whose geometry changed.
 
@@ -158,6 +164,11 @@ class SceneView:
                     continue
                 renderer.add_mesh(key, segment_mesh(seg, fig, budget if cad else None), replace=True)
                 self._geometry[key] = gkey
+            skin = None if cad else skin_for(fig)  # a standard human's continuous torso
+            key = self.skin_key(fig.name)
+            if skin is not None and (self._geometry.get(key) is not skin or not renderer.has_mesh(key)):
+                renderer.add_skinned_mesh(key, SkinnedMesh.of(skin), replace=True)
+                self._geometry[key] = skin
 
     # ------------------------------------------------------------------ scene
     def build(self, env: Environment, goals: Sequence[GoalView] = (), skeleton: bool = False,
@@ -183,6 +194,10 @@ class SceneView:
                     self.mesh_key(fig.name, name), fk.segments[i], color,
                     pick_id=self.segment_pick_id(fig.name, name), transparent=cad,
                     highlighted=hl_fig and (is_object(fig) or highlight.segment == name)))
+            skin = None if cad else skin_for(fig)
+            if skin is not None:  # stands in for its bones' items (their colour, pick id, highlight)
+                scene.skins.append(SkinnedItem(self.skin_key(fig.name), bone_matrices(skin, fk.segments, kin.segment_names),
+                                               bone_items=[self.mesh_key(fig.name, b) for b in skin.bones]))
         for k, g in enumerate(goals):
             pid = GOAL_PICK_BASE + k
             self._targets[pid] = GoalPick(g.key)
@@ -193,6 +208,22 @@ class SceneView:
             scene.triads.extend(overlay.triads)
             scene.lines.extend(overlay.lines)
         return scene
+
+    def add_terrain(self, renderer: "Renderer", scene: Scene, doc: object) -> None:
+        """Draw the document's terrain (:mod:`jackpy.document.terrain`), if it has one: the height
+        grid shaded, forbidden footholds tinted (:mod:`jackpy.locomotion.terrain_mesh`). The terrain
+        is the ground then, so the floor grid is not drawn (it would fight the terrain at y = 0)."""
+        from jackpy.document.terrain import terrain_of
+        from jackpy.locomotion.terrain_mesh import display_mesh
+
+        terrain = terrain_of(doc)  # type: ignore[arg-type]
+        if terrain is None:
+            return
+        if self._geometry.get(TERRAIN_MESH) is not terrain or not renderer.has_mesh(TERRAIN_MESH):
+            renderer.add_mesh(TERRAIN_MESH, RenderMesh(*display_mesh(terrain)), replace=True)
+            self._geometry[TERRAIN_MESH] = terrain
+        scene.items.append(DrawItem(TERRAIN_MESH, np.eye(4), (1.0, 1.0, 1.0, 1.0)))
+        scene.grid = None
 
     def _skeleton(self, scene: Scene, fig: Figure, W: np.ndarray, highlight: SegmentPick | None) -> None:
         kin = fig.kinematics()
