@@ -9,6 +9,7 @@ exact gradient of the weighted potential over the variables. The solver works in
 
 from __future__ import annotations
 
+import math
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
@@ -185,12 +186,16 @@ class Compiled:
         self._A_z = A_z[self._row_keep] if A.shape[0] else np.zeros((0, self.nv))
         self._no_rows = np.zeros(0)
         self._A_z.flags.writeable = False  # shared by every solve
-        # constant part of the group chain-rule matrix (the free variables' identity block)
-        self._M0 = None
-        if self.groups:
-            M0 = np.zeros((self.cols.size, self.nv))
-            M0[np.arange(self.n_free_vars), np.arange(self.n_free_vars)] = 1.0
-            self._M0 = M0
+        # the chain rule dq/dz, block by block: the free variables' columns are scaled copies; each
+        # group's member columns (contiguous in ``cols``) times its driver's Jacobian (per evaluation)
+        self._blocks = []
+        row = col = self.n_free_vars
+        for g, idx, sl, used in self.groups:
+            self._blocks.append((g.driver, sl, used, row, row + idx.size, col, col + used.size))
+            row += idx.size
+            col += used.size
+        self._free_scale = self.scale[:self.n_free_vars]
+        self._level_slots = {lv: [k for k, (_, l) in enumerate(self.entries) if l == lv] for lv in self.levels}
         self.arm: ArmChain | None = None
         if len(self.entries) == 1 and not self.groups:
             from jackpy.ik.arm7 import match_arm
@@ -239,30 +244,39 @@ class Compiled:
 
     # ----- evaluation ------------------------------------------------------------------------------
     def evaluate(self, x_base: np.ndarray, q_base: np.ndarray, z: np.ndarray) -> Evaluation:
-        """One forward pass; every goal's residual and Jacobian (over ``z``) from it."""
+        """One forward pass; every goal's residual and Jacobian (over ``z``) from it.
+
+        The goals' Jacobians over the DOF columns are stacked per level and taken to ``z`` once per
+        level (:meth:`to_z`), not goal by goal."""
         x = self.x_of(x_base, z)
         q = self.q_of(q_base, x)
         fk = self.kin.forward(q, self.figure.location)
         ctx = Context(self.kin, fk, self.cols, self.columns)
-        if self.groups:
-            M = self._M0.copy()
-            row = col = self.n_free_vars
-            for g, idx, sl, used in self.groups:
-                jac = np.asarray(g.driver.jacobian(x[sl]), dtype=float)[:, used]
-                M[row:row + idx.size, col:col + used.size] = jac
-                row += idx.size
-                col += used.size
-            M *= self.scale
-        evals, per_level = [], {lv: ([], []) for lv in self.levels}
-        for g, lv in self.entries:
-            e = g.evaluate(ctx)
-            w = np.sqrt(g.weight)
-            J = e.J @ M if self.groups else e.J * self.scale
-            evals.append(e)
-            per_level[lv][0].append(w * e.f)
-            per_level[lv][1].append(w * J)
-        levels = {lv: (np.concatenate(fs), np.vstack(js)) for lv, (fs, js) in per_level.items()}
+        chain = [(lo_r, hi_r, lo_c, hi_c, np.asarray(drv.jacobian(x[sl]), dtype=float)[:, used]
+                  * self.scale[lo_c:hi_c]) for drv, sl, used, lo_r, hi_r, lo_c, hi_c in self._blocks]
+        evals = [g.evaluate(ctx) for g, _ in self.entries]
+        levels = {}
+        for lv, slots in self._level_slots.items():
+            w = [math.sqrt(self.entries[k][0].weight) for k in slots]
+            if len(slots) == 1:
+                e = evals[slots[0]]
+                F, Jc = w[0] * e.f, w[0] * e.J
+            else:
+                F = np.concatenate([wk * evals[k].f for wk, k in zip(w, slots)])
+                Jc = np.concatenate([wk * evals[k].J for wk, k in zip(w, slots)])
+            levels[lv] = (F, self._to_z(Jc, chain))
         return Evaluation(z, q, evals, levels, tuple(a.selected for a in self.anyofs))
+
+    def _to_z(self, Jc: np.ndarray, chain: list) -> np.ndarray:
+        """Rows over the DOF columns ``cols`` -> rows over the scaled variables ``z``."""
+        if not chain:
+            return Jc * self.scale
+        out = np.empty((Jc.shape[0], self.nv))
+        nf = self.n_free_vars
+        np.multiply(Jc[:, :nf], self._free_scale, out=out[:, :nf])
+        for lo_r, hi_r, lo_c, hi_c, jac in chain:
+            np.matmul(Jc[:, lo_r:hi_r], jac, out=out[:, lo_c:hi_c])
+        return out
 
 
 def _anyofs(goal: Goal) -> list[AnyOf]:

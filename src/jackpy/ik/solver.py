@@ -44,7 +44,7 @@ MU_FLOOR = 1e-3
 #: relative potential decrease and largest move (scaled radians) below which an iteration creeps
 CREEP, CREEP_STEP = 1e-9, 1e-8
 #: damping of the bounded Gauss-Newton step: ``lambda = GN_DAMPING_FLOOR + GN_DAMPING * |F|`` (scaled units)
-GN_DAMPING, GN_DAMPING_FLOOR = 0.03, 1e-3
+GN_DAMPING, GN_DAMPING_FLOOR = 0.01, 1e-4
 _EMPTY = np.zeros(0)
 
 try:  # numpy.linalg.inv's own kernel, without its per-call checks (the matrix is positive definite)
