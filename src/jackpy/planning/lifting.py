@@ -24,7 +24,7 @@ time of the step. The strategies, in order of rising discomfort (§5.3.4, §5.3.
    ignored and the active joints move down the discomfort gradient (the weakest joint reverses and
    the hand moves away from the goal);
 4. **added joint**: when pull back is exhausted (it no longer lowers the discomfort) or the hand
-   has stopped gaining on the goal, the waist (the spine group's flexion, lateral bend and twist) joins
+   has stopped gaining on the goal, the waist (the spine group's flexion: the trunk leans, :data:`WAIST_ANGLES`) joins
    the hand-shoulder chain (§5.3.6, Fig 5.18). When that too is exhausted the lift stops and
    reports failure (§5.3.3: "the attempt to complete a task should cease").
 
@@ -36,6 +36,7 @@ torques only, as in the book's examples. Deterministic: no randomness anywhere.
 from __future__ import annotations
 
 import copy
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -60,9 +61,15 @@ PB_PATIENCE = 4
 PB_MIN_GAIN = 1e-4
 #: the hand has stalled when it has not come this much nearer the goal (m) in STALL_STEPS steps
 STALL_GAIN = 0.002
-STALL_STEPS = 120
+STALL_STEPS = 40
 #: largest change of any active variable in one step (rad)
 MAX_JOINT_STEP = np.radians(2.0)
+#: the added joint: the waist's forward/backward bend (the spine group's flexion, spread over the
+#: vertebrae by Monheit's model), the sagittal lean of the book's Fig 5.18; bend and twist stay held
+WAIST_ANGLES = ("flexion",)
+#: the planner keeps the shoulder's elevation above this (rad; or above the start's when lower): at 0
+#: the plane of elevation is singular and a step "through" the hanging arm would be clamped
+MIN_ELEVATION = np.radians(10.0)
 #: torque availability never drops below this (a joint at its limit still moves a little)
 AVAILABILITY_FLOOR = 0.05
 #: rate model [proposal]: the fastest joint moves at W_MAX·(1 - R) rad/s (R the discomfort, at most 1),
@@ -133,7 +140,8 @@ class LiftFrame:
 @dataclass
 class LiftResult:
     """The lift's frames, whether the goal was reached, why it stopped, the strategy changes
-    ``(iteration, strategy)`` and the iteration at which the waist joined (None: never)."""
+    ``(frame, strategy)`` (the strategy of the step that made that frame on) and the frame after
+    which the waist joined the chain (None: never)."""
 
     task: LiftTask
     frames: list[LiftFrame]
@@ -213,7 +221,34 @@ def _arm_variables(vmap: VariableMap, hand: str) -> list[int]:
 
 
 def _waist_variables(vmap: VariableMap) -> list[int]:
-    return [vmap.names.index(f"spine.{a}") for a in ("flexion", "lateral", "axial")]
+    return [vmap.names.index(f"spine.{a}") for a in WAIST_ANGLES]
+
+
+#: the default lift (figure frame: x the figure's left, y up, z forward; metres from the shoulder
+#: joint of the lifting hand): from in front of the chest to above the head, in front of the face
+DEFAULT_START = np.array([0.0, -0.25, 0.30])
+DEFAULT_GOAL = np.array([0.0, 0.45, 0.30])
+
+
+def shoulder_position(figure: Figure, hand: str = "right") -> np.ndarray:
+    """World position (m) of the ``hand`` side's shoulder joint centre in the figure's posture."""
+    kin = figure.kinematics()
+    fk = kin.forward(figure.q, figure.location)
+    j = kin.joint_names.index(f"{hand}_shoulder")
+    return (fk.segments[kin.joint_from_seg[j]] @ kin.L_from[j])[:3, 3].copy()
+
+
+def figure_offset(figure: Figure, offset: np.ndarray, hand: str = "right") -> np.ndarray:
+    """World point (m) at ``offset`` (figure frame, m; :data:`DEFAULT_START`) from the shoulder."""
+    heading = figure.location[:3, :3]
+    return shoulder_position(figure, hand) + heading @ np.asarray(offset, dtype=float)
+
+
+def overhead_task(figure: Figure, load_kg: float, hand: str = "right", **options: Any) -> LiftTask:
+    """The book's example task (§5.3.6): put ``load_kg`` above the head, from in front of the chest
+    (:data:`DEFAULT_START`, :data:`DEFAULT_GOAL`); ``options`` are further :class:`LiftTask` fields."""
+    return LiftTask(load_kg, figure_offset(figure, DEFAULT_GOAL, hand), figure_offset(figure, DEFAULT_START, hand),
+                    hand=hand, **options)
 
 
 def place_start(figure: Figure, task: LiftTask) -> None:
@@ -249,7 +284,9 @@ class _Lifter:
         dq = vm.dq_dx(vm.x())
         mon = self.monitor.monitored
         self._drives = {int(v): np.flatnonzero(np.abs(dq[mon, v]) > 1e-12) for v in np.concatenate([self.active, self.waist])}
-        self.lower, self.upper = vm.lower, vm.upper
+        self.lower, self.upper = vm.lower.copy(), vm.upper.copy()
+        elevation = vm.names.index(f"{task.hand}_shoulder_complex.elevation")
+        self.lower[elevation] = min(max(self.lower[elevation], MIN_ELEVATION), vm.x()[elevation])
 
     # ----- helpers -------------------------------------------------------------------------------
     def limit(self, t: float) -> float:
@@ -290,6 +327,7 @@ class _Lifter:
         j = kin.joint_names.index(self.shoulder_joint)
         return (fk.segments[kin.joint_from_seg[j]] @ kin.L_from[j])[:3, 3].copy()
 
+
     # ----- strategies ----------------------------------------------------------------------------
     def toward_goal(self, s: ChainState, limit: float) -> tuple[np.ndarray, float]:
         """Unit axis to the goal and this step's hand travel."""
@@ -297,29 +335,48 @@ class _Lifter:
         dist = float(np.linalg.norm(d))
         return d / max(dist, 1e-12), min(self.task.step, dist)
 
+    def bounded(self, s: ChainState, solve: Callable[[np.ndarray], np.ndarray]) -> np.ndarray | None:
+        """The step ``solve(mask)`` (mask: 1 free, 0 held, per active variable) re-solved with every
+        variable that sits at a bound and would be pushed past it held, then applied."""
+        mask = np.ones(len(self.active))
+        x, lo, hi = s.x[self.active], self.lower[self.active], self.upper[self.active]
+        dx = solve(mask)
+        for _ in range(3):
+            out = ((x <= lo + 1e-9) & (dx < 0.0)) | ((x >= hi - 1e-9) & (dx > 0.0))
+            if not out.any():
+                break
+            mask[out] = 0.0
+            dx = solve(mask) * mask
+        return self.apply_step(s, dx)
+
     def available_torque(self, s: ChainState, limit: float) -> np.ndarray | None:
         u, h = self.toward_goal(s, limit)
         w = self.weights(s, limit)
-        headroom = w * (weighted_pinv(s.jacobian, np.ones_like(w)) @ u)
-        direction = project_to_cone(s.jacobian @ headroom, u, self.beta)
-        return self.apply_step(s, weighted_step(s.jacobian, w, h * direction))
+
+        def solve(mask: np.ndarray) -> np.ndarray:
+            headroom = w * mask * (weighted_pinv(s.jacobian, mask) @ u)
+            direction = project_to_cone(s.jacobian @ headroom, u, self.beta)
+            return weighted_step(s.jacobian, w * mask, h * direction)
+        return self.bounded(s, solve)
 
     def reducing_moment(self, s: ChainState, limit: float, beta: float) -> np.ndarray | None:
         u, h = self.toward_goal(s, limit)
         w = self.weights(s, limit)
         grad = self.monitor.ratio_gradient(s, self.active)
-        direction = least_moment_direction(s.jacobian, w, grad, u, beta)
-        pinv = weighted_pinv(s.jacobian, w)
-        dx = pinv @ (h * direction)
-        null = -(np.eye(len(self.active)) - pinv @ s.jacobian) @ (w * grad)
-        nn = float(np.abs(null).max())
-        if nn > 1e-12:
-            dx = dx + null * (0.5 * MAX_JOINT_STEP / nn)
-        return self.apply_step(s, dx)
+
+        def solve(mask: np.ndarray) -> np.ndarray:
+            wm = w * mask
+            direction = least_moment_direction(s.jacobian, wm, grad, u, beta)
+            pinv = weighted_pinv(s.jacobian, wm)
+            dx = pinv @ (h * direction)
+            null = -(np.eye(len(self.active)) - pinv @ s.jacobian) @ (wm * grad)
+            nn = float(np.abs(null).max())
+            return dx + null * (0.5 * MAX_JOINT_STEP / nn) if nn > 1e-12 else dx
+        return self.bounded(s, solve)
 
     def pull_back(self, s: ChainState) -> np.ndarray | None:
         grad = self.monitor.ratio_gradient(s, self.active)
-        return self.apply_step(s, -grad)
+        return self.bounded(s, lambda mask: -grad * mask)
 
     # ----- the loop ------------------------------------------------------------------------------
     def run(self) -> LiftResult:
@@ -368,9 +425,9 @@ class _Lifter:
             exhausted = exhausted or it - best_at > STALL_STEPS
             if exhausted:
                 if task.allow_waist and waist_at is None:
-                    waist_at = it
+                    waist_at = len(frames) - 1
                     self.active = np.concatenate([self.active, self.waist])
-                    log.append((it, ADDED_JOINT))
+                    log.append((waist_at, ADDED_JOINT))
                     pulling, stuck, best_at = False, 0, it
                     s = self.monitor.state(s.x, self.active)
                     continue
@@ -380,7 +437,7 @@ class _Lifter:
             if x_new is None:
                 continue
             if not log or log[-1][1] != used:
-                log.append((it, used))
+                log.append((len(frames), used))
             new = self.monitor.state(x_new, self.active)
             frames.append(self.frame(new, t + self.duration(s, new), used, *self.work(s, new, frames[-1].energy)))
             s = new
@@ -411,7 +468,7 @@ class _Lifter:
         return float(np.abs(b.q - a.q).max()) / (W_MAX * rate)
 
     def frame(self, s: ChainState, t: float, strategy: str, work: float, energy: float) -> LiftFrame:
-        chain = "hand-waist" if len(self.active) > 4 else "hand-shoulder"
+        chain = "hand-waist" if self.waist[0] in self.active else "hand-shoulder"
         return LiftFrame(t, s.x.copy(), s.hand.copy(), self.shoulder_position(s.q), s.q.copy(), s.ratios.copy(),
                          self.limit(t), strategy, chain, work, energy)
 
