@@ -49,7 +49,7 @@ class Dof:
     def __post_init__(self) -> None:
         if self.kind not in ("R", "T"):
             raise FigureError(f"DOF kind must be 'R' or 'T', not {self.kind!r}")
-        x, y, z = (float(v) for v in np.asarray(self.axis, dtype=float).reshape(3))
+        x, y, z = np.asarray(self.axis, dtype=float).reshape(3).tolist()
         big = max(abs(x), abs(y), abs(z))
         if not (math.isfinite(big) and big >= 1e-12):
             raise FigureError(f"DOF axis ({x:g}, {y:g}, {z:g}) has no direction")

@@ -58,6 +58,10 @@ _FAST_MAX = MAX_MAGNITUDE
 _DIGITS = frozenset("0123456789")
 _IDSTART = frozenset("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz_")
 _ROTATIONS = frozenset(["rotx", "roty", "rotz", "rot"])
+_JOINT_KEYS = {"connect": "connect", "type": "type", "displacement": "displacement", "lower": "lower",
+               "upper": "upper", "lower_limits": "lower", "upper_limits": "upper"}
+#: ``R(x)``-style DOFs: (kind, axis name) -> the unit axis (a fresh copy is made per DOF)
+_NAMED_DOFS = {(kind, name): axis for kind in ("R", "T") for name, axis in AXES.items()}
 _BOUNDS = np.full((4, 4), _MAX_LINEAR)
 _BOUNDS[:3, 3] *= CM
 
@@ -210,7 +214,7 @@ class _Parser:
         toks, k = ts.tokens, ts.pos
         name = toks[k]
         kinds = PRIM_ARGS.get(name)
-        if kinds is None or name == "rot" or toks[k + 1] != "(":
+        if kinds is None or toks[k + 1] != "(":
             return self.prim_checked()
         j = k + 2
         args = []
@@ -239,7 +243,7 @@ class _Parser:
             if not -_FAST_MAX <= v <= _FAST_MAX:  # (also false for NaN)
                 return self.prim_checked()
             args.append(v)
-        if toks[j] != ")":
+        if toks[j] != ")" or (name == "rot" and max(abs(args[0]), abs(args[1]), abs(args[2])) < 1e-12):
             return self.prim_checked()
         ts.pos = j + 1
         return (name, tuple(args)), k
@@ -290,6 +294,10 @@ class _Parser:
         return prims
 
     def siteref(self) -> tuple[str, str]:
+        toks, k = self.ts.tokens, self.ts.pos
+        if toks[k + 1] == "." and toks[k][:1] in _IDSTART and toks[k + 2][:1] in _IDSTART:
+            self.ts.pos = k + 3  # (SEGMENT.SITE in one look)
+            return toks[k], toks[k + 2]
         seg = self.text(self.ident("a site reference SEGMENT.SITE"))
         self.ts.expect(".", "'.' in SEGMENT.SITE")
         return seg, self.text(self.ident("a site name after '.'"))
@@ -377,11 +385,16 @@ class _Parser:
             k = ts.pos
             word = ts.tokens[k]
             if word == "site":
-                ts.pos = k + 1
-                site, sat = self.name("a site name")
-                ts.expect("->", "'->location'")
-                ts.expect("location", "'location' after '->'")
-                ts.expect("=")
+                toks = ts.tokens
+                site, sat = toks[k + 1], k + 1
+                if toks[k + 2] == "->" and toks[k + 3] == "location" and toks[k + 4] == "=" and site[:1] in _IDSTART:
+                    ts.pos = k + 5  # (the whole head in one look)
+                else:
+                    ts.pos = k + 1
+                    site, sat = self.name("a site name")
+                    ts.expect("->", "'->location'")
+                    ts.expect("location", "'location' after '->'")
+                    ts.expect("=")
                 if site in seg.sites:
                     raise self.fig_error(sat, f"{where}: duplicate site {site!r}")
                 seg.add_site(site, compose(self.xform(rigid=True)))
@@ -416,7 +429,9 @@ class _Parser:
                 values = self.value_list()
                 if len(values) != 3:
                     raise self.fig_error(k, f"{where}: com needs 3 values, got {len(values)}")
-                seg.com = np.array([self.convert(v, LENGTH_UNITS, "com") for v in values]) * CM
+                bare = [v for v, u, _ in values if u < 0 and -MAX_MAGNITUDE <= v <= MAX_MAGNITUDE]
+                seg.com = np.array(bare if len(bare) == 3 else
+                                   [self.convert(v, LENGTH_UNITS, "com") for v in values]) * CM
             else:
                 values = self.number_list()
                 if len(values) != 6:
@@ -435,8 +450,8 @@ class _Parser:
         while not ts.accept("}"):
             k = ts.pos
             word = ts.tokens[k]
-            key = {"lower_limits": "lower", "upper_limits": "upper"}.get(word, word)
-            if key not in ("connect", "type", "displacement", "lower", "upper"):
+            key = _JOINT_KEYS.get(word)
+            if key is None:
                 raise ts.error("expected 'connect', 'type', 'displacement', 'lower', 'upper' or '}'")
             ts.pos = k + 1
             if key in seen:
@@ -465,6 +480,11 @@ class _Parser:
     def dof(self) -> tuple[str, np.ndarray]:
         """``("R" | "T") "(" ("x" | "y" | "z" | number "," number "," number) ")"``."""
         ts = self.ts
+        toks, k = ts.tokens, ts.pos
+        axis = _NAMED_DOFS.get((toks[k], toks[k + 2])) if toks[k + 1] == "(" and toks[k + 3] == ")" else None
+        if axis is not None:  # (the common R(x) form in one look)
+            ts.pos = k + 4
+            return toks[k], axis.copy()
         kind = ts.peek()
         if kind not in ("R", "T"):
             raise ts.error("expected a DOF R(axis) or T(axis)")
@@ -641,6 +661,10 @@ class _Parser:
         """Values for DOFs of ``kinds`` ('R' deg, 'T' cm) in SI, checking count and units."""
         if len(values) != len(kinds):
             raise self.fig_error(tok, f"{where}: {self.text(tok)} has {len(values)} values for {len(kinds)} DOFs")
+        bare = [v for v, u, _ in values if u < 0 and -MAX_MAGNITUDE <= v <= MAX_MAGNITUDE]
+        if len(bare) == len(values):
+            # bare numbers within range (the common case): one array, the same bits as below
+            return np.array(bare) * np.array([DEG if k == "R" else CM for k in kinds])
         out = []
         for k, (v, kind) in enumerate(zip(values, kinds)):
             if kind == "R":
