@@ -536,6 +536,7 @@ class App:
         self.view.upload(self.renderer, self.env)
         scene = self.view.build(self.env, self.goals, self.settings.skeleton, self.selection,
                                 Overlay(triads, lines), self.settings.show_floor)
+        self.view.add_terrain(self.renderer, scene, self.doc)
         self.analysis.decorate(self, scene)
         self.renderer.render(scene, self.camera.view_matrix(), self.camera.projection_matrix(self.renderer.aspect))
         self.analysis.after_draw(self)
