@@ -24,7 +24,7 @@ _CACHE = "_terrain_cache"
 
 def terrain_of(doc: "Document") -> Terrain | None:
     """The document's terrain, or None."""
-    data = doc.extras.get(KEY)
+    data = getattr(doc, "extras", {}).get(KEY)  # (extras: Document's tool data, saved and undone)
     if data is None:
         return None
     cached = doc.__dict__.get(_CACHE)
