@@ -92,9 +92,9 @@ def test_pieces_reassemble_into_the_skin():
     w = fig.world_transforms()
     pieces = skinned_pieces(fig, w)
     assert set(pieces) == set(SPINE_SEGMENTS)
-    assert sum(len(f) for _, f in pieces.values()) == len(skin.faces)
+    assert sum(len(piece.faces) for piece in pieces.values()) == len(skin.faces)
     posed = deform(skin, bone_matrices(skin, w))[0]
-    world = np.vstack([v @ w[s][:3, :3].T + w[s][:3, 3] for s, (v, _) in pieces.items()])
+    world = np.vstack([piece.vertices @ w[s][:3, :3].T + w[s][:3, 3] for s, piece in pieces.items()])
     # every piece vertex is a skin vertex (shared boundaries coincide: no seam)
     known = {tuple(p) for p in np.round(posed, 9)}
     assert all(tuple(p) in known for p in np.round(world, 9))

@@ -15,6 +15,7 @@ from jackpy.render.skinning import stand_in
 from jackpy.ui.scene_view import SceneView, SegmentPick
 
 SIZE = 320
+MID_TORSO = SPINE_SEGMENTS[1:-2]  # L5 to T3: the crotch, the neck base and the shoulders' slope left out
 
 
 @pytest.fixture(scope="module")
@@ -141,14 +142,14 @@ def torso_picture(renderer, fig, env, eye_offset, skinned=True):
     return rgb @ [0.299, 0.587, 0.114], ids, view
 
 
-def smoothness_defects(luminance, ids, view, fig):
+def smoothness_defects(luminance, ids, mid):
     """(holes, steep, dark, rough) pixel counts of the torso picture: background enclosed by the
     silhouette; inside the mid-torso (L5 to T3, 3 px in from any edge) pixels whose shading jumps by
     more than 10 grey levels per pixel (band edges) or that are 25 levels darker than their 5x5
-    median (dark dots); silhouette pixels a 2-px Gaussian smoothing of the outline moves."""
+    median (dark dots); silhouette pixels a 2-px Gaussian smoothing of the outline moves. ``mid``:
+    the ids of the mid-torso segments."""
     mask = ids != 0
     holes = int((ndi.binary_fill_holes(mask) & ~mask).sum())
-    mid = {view.segment_pick_id(fig.name, s) for s in SPINE_SEGMENTS[1:-2]}
     inner = ndi.binary_erosion(np.isin(ids, list(mid)), iterations=3) & ndi.binary_erosion(mask, iterations=3)
     gradient = np.hypot(*np.gradient(luminance))
     steep = int((inner & (gradient > 10.0)).sum())
@@ -161,15 +162,17 @@ def smoothness_defects(luminance, ids, view, fig):
                          ids=["side", "back", "front-below"])
 def test_bent_and_twisted_torso_is_smooth(renderer, eye_offset):
     fig, env = bent_human()
-    holes, steep, dark, rough, area = smoothness_defects(*torso_picture(renderer, fig, env, eye_offset), fig)
+    luminance, ids, view = torso_picture(renderer, fig, env, eye_offset)
+    mid = {view.segment_pick_id(fig.name, s) for s in MID_TORSO}
+    holes, steep, dark, rough, area = smoothness_defects(luminance, ids, mid)
     assert area > 5000
     assert holes == 0
     assert dark == 0
     assert steep <= 0.001 * area  # measured: 0 in all three views
     assert rough <= 8
     # negative control: the rigid slabs of the same posture fail the banding check
-    r_holes, r_steep, r_dark, r_rough, r_area = smoothness_defects(
-        *torso_picture(renderer, fig, env, eye_offset, skinned=False), fig)
+    luminance, ids, _ = torso_picture(renderer, fig, env, eye_offset, skinned=False)
+    r_holes, r_steep, r_dark, r_rough, r_area = smoothness_defects(luminance, ids, mid)
     assert r_steep >= 50 and r_steep > 20 * steep  # measured: 79 (back) to 1204 (front, below)
 
 
@@ -179,3 +182,23 @@ def test_the_skin_picks_as_the_segment_it_covers(renderer):
     named = {view.pick_target(int(i)) for i in np.unique(ids) if i}
     assert {SegmentPick(fig.name, s) for s in ("l3", "t8", "pelvis")} <= named
     assert skin_for(fig) is not None
+
+
+def test_report_pictures_draw_the_skin(egl_context):
+    from jackpy.analysis.view import figure_bodies
+    from jackpy.render import BodyRenderer
+
+    fig, _ = bent_human()
+    bodies = [b for b in figure_bodies(fig) if b.name.split(".", 1)[1] in SPINE_SEGMENTS]
+    assert len(bodies) == len(SPINE_SEGMENTS)
+    c = fig.world_transforms()["t6"][:3, 3]
+    view, proj = camera(c, c + np.array([0.1, -0.3, 1.0]))
+    pictures = BodyRenderer((SIZE, SIZE), ctx=egl_context)
+    try:
+        rgb = pictures.render(bodies, view, proj, background=(0.0, 0.0, 0.0)).astype(float)
+        ids, _ = pictures.render_ids(bodies, view, proj)
+    finally:
+        pictures.release()
+    mid = {k + 1 for k, b in enumerate(bodies) if b.name.split(".", 1)[1] in MID_TORSO}
+    holes, steep, dark, _, area = smoothness_defects(rgb @ [0.299, 0.587, 0.114], ids, mid)
+    assert area > 5000 and holes == 0 and dark == 0 and steep <= 0.001 * area

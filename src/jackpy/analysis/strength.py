@@ -18,6 +18,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from jackpy.body.skin import segment_surfaces
 from jackpy.peabody.kinematics import FKResult
 from jackpy.peabody.model import Figure
 
@@ -134,12 +135,11 @@ def torque_vertex_colours(figure: Figure, joint_util: Mapping[str, float], sprea
     for j in figure.joints.values():
         touching[j.from_seg].append(j.name)
         touching[j.to_seg].append(j.name)
+    world = {name: fk.segments[i] for i, name in enumerate(kin.segment_names)}
     out: dict[str, np.ndarray] = {}
-    for name, seg in figure.segments.items():
-        if seg.psurf is None or seg.psurf.mesh is None:
-            continue
-        w = fk.segments[kin.segment_index[name]]
-        v = seg.psurf.posed_mesh().vertices @ w[:3, :3].T + w[:3, 3]
+    for name, mesh in segment_surfaces(figure, world).items():  # what figure_bodies draws
+        w = world[name]
+        v = mesh.vertices @ w[:3, :3].T + w[:3, 3]
         u = np.zeros(len(v))
         for jn in touching[name]:
             val = joint_util.get(jn, float("nan"))

@@ -25,6 +25,7 @@ import numpy as np
 from jackpy.render.bodies import Body, BodyRenderer
 from jackpy.render.projection import linear_depth, look_at, perspective_matrix
 from jackpy.analysis.parts import figure_parts
+from jackpy.body.skin import segment_surfaces
 from jackpy.peabody.model import Environment, Figure
 
 #: (name, half-angle radians) from narrowest to widest
@@ -84,14 +85,12 @@ class Visibility:
 
 
 def figure_bodies(figure: Figure, exclude_containing: np.ndarray | None = None) -> list[Body]:
-    """A body per segment with geometry, named ``figure.segment``; segments whose world bounding box
-    holds ``exclude_containing`` (the head and eyes around the eye point) are left out."""
+    """A body per segment with geometry, named ``figure.segment`` (a standard human's torso as its
+    posed skin, :func:`jackpy.body.skin.segment_surfaces`); segments whose world bounding box holds
+    ``exclude_containing`` (the head and eyes around the eye point) are left out."""
     world = figure.world_transforms()
     out = []
-    for name, seg in figure.segments.items():
-        mesh = seg.psurf.posed_mesh() if seg.psurf is not None else None
-        if mesh is None or len(mesh.faces) == 0:
-            continue
+    for name, mesh in segment_surfaces(figure, world).items():
         t = world[name]
         if exclude_containing is not None:
             v = mesh.vertices @ t[:3, :3].T + t[:3, 3]

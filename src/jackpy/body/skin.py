@@ -27,16 +27,18 @@ flattened as the pelvis slab is. Limbs keep their rigid surfaces.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from jackpy.body.mesh_loft import superellipse_unit, tube
 from jackpy.body.shapes import SEAT_CLEARANCE, _Torso
 from jackpy.body.skeleton import build_skeleton
+from jackpy.peabody.geometry import Mesh
 from jackpy.peabody.model import Figure
 
-__all__ = ["SPINE_SEGMENTS", "Skin", "bone_matrices", "build_skin", "deform", "skin_for", "skinned_pieces"]
+__all__ = ["SPINE_SEGMENTS", "Skin", "SkinPiece", "bone_matrices", "build_skin", "deform", "segment_surfaces", "skin_for",
+           "skinned_pieces"]
 
 #: the torso's bones from the bottom up (the segments whose rigid slabs the skin replaces)
 SPINE_SEGMENTS = ("pelvis", "l5", "l4", "l3", "l2", "l1") + tuple(f"t{k}" for k in range(12, 0, -1))
@@ -73,6 +75,17 @@ class Skin:
         m = np.tile(np.eye(4), (len(self.bones), 1, 1))
         m[:, :3, 3] = -self.origins
         return m
+
+
+@dataclass
+class SkinPiece(Mesh):
+    """The part of the posed skin one segment owns, in that segment's frame, with ``normals`` (n,3):
+    the whole skin's unit normals at its vertices (the piece's own faces would crease its border)."""
+
+    normals: np.ndarray = field(default_factory=lambda: np.zeros((0, 3)))
+
+    def vertex_normals(self) -> np.ndarray:
+        return self.normals
 
 
 def chain_weights(height: np.ndarray, joints: np.ndarray, blend: np.ndarray) -> np.ndarray:
@@ -171,22 +184,38 @@ def deform(skin: Skin, matrices: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return p, n / np.maximum(np.linalg.norm(n, axis=1, keepdims=True), 1e-12)
 
 
-def skinned_pieces(figure: Figure, world: dict[str, np.ndarray] | None = None
-                   ) -> dict[str, tuple[np.ndarray, np.ndarray]] | None:
-    """The posed skin cut along its owners: ``{segment: (vertices (k,3) in that segment's frame,
-    faces)}`` for every bone, or ``None`` for a figure without a skin. A face belongs to the owner of
-    its first vertex; neighbouring pieces share their boundary points exactly, so drawn together
-    (each with its segment's world transform) they are the continuous skin."""
+def skinned_pieces(figure: Figure, world: dict[str, np.ndarray] | None = None) -> dict[str, SkinPiece] | None:
+    """The posed skin cut along its owners: ``{segment: piece in that segment's frame}`` for every
+    bone, or ``None`` for a figure without a skin. A face belongs to the owner of its first vertex;
+    neighbouring pieces share their boundary points and normals exactly, so drawn together (each
+    with its segment's world transform) they are the continuous skin."""
     skin = skin_for(figure)
     if skin is None:
         return None
     world = figure.world_transforms() if world is None else world
-    p, _ = deform(skin, bone_matrices(skin, world))
+    p, n = deform(skin, bone_matrices(skin, world))
     face_owner = skin.owner[skin.faces[:, 0]]
     out = {}
     for b, name in enumerate(skin.bones):
         faces = skin.faces[face_owner == b]
         used, local = np.unique(faces, return_inverse=True)
         inv = np.linalg.inv(world[name])
-        out[name] = (p[used] @ inv[:3, :3].T + inv[:3, 3], local.reshape(-1, 3))
+        out[name] = SkinPiece(p[used] @ inv[:3, :3].T + inv[:3, 3], local.reshape(-1, 3), n[used] @ inv[:3, :3].T)
+    return out
+
+
+def segment_surfaces(figure: Figure, world: dict[str, np.ndarray] | None = None) -> dict[str, Mesh]:
+    """Every segment's drawn surface in its own frame at the current posture: for a standard human
+    the posed skin's pieces (:func:`skinned_pieces`) in place of the rigid torso slabs, else (and for
+    every other segment) its rigid psurf. Segments without geometry are left out. Report pictures,
+    ID-buffer visibility and torque colouring use this, so they show what the window shows."""
+    pieces = skinned_pieces(figure, world) or {}
+    out = {}
+    for name, seg in figure.segments.items():
+        if name in pieces:
+            out[name] = pieces[name]
+            continue
+        mesh = seg.psurf.posed_mesh() if seg.psurf is not None else None
+        if mesh is not None and len(mesh.faces):
+            out[name] = mesh
     return out

@@ -9,6 +9,7 @@ its depth (book §5.1.1's Z-buffer perception). It knows neither figures nor win
 
 from __future__ import annotations
 
+import hashlib
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -25,8 +26,8 @@ __all__ = ["Body", "BodyRenderer", "linear_depth", "look_at", "perspective_matri
 
 @dataclass
 class Body:
-    """Something to draw: ``mesh`` (any object with ``vertices`` (n,3) m and ``faces`` (m,3)) in its
-    own frame, ``model`` its 4x4 world transform, ``name``, ``colour`` (RGBA in [0, 1]) or
+    """Something to draw: ``mesh`` (any object with ``vertices`` (n,3) m and ``faces`` (m,3), and
+    optionally unit vertex ``normals`` (n,3), else computed with creases) in its own frame, ``model`` its 4x4 world transform, ``name``, ``colour`` (RGBA in [0, 1]) or
     per-vertex ``vertex_colours`` (n,3)."""
 
     name: str
@@ -44,6 +45,8 @@ class BodyRenderer:
     by :meth:`release`. By default a standalone EGL context is made and owned. ``samples``: MSAA of
     the pictures (ID buffers are never multisampled)."""
 
+    MAX_CACHED = 512
+
     def __init__(self, size: tuple[int, int] = (512, 512), ctx: Any = None, samples: int = 4) -> None:
         from jackpy.render.offscreen import create_egl_context
         from jackpy.render.renderer import Renderer
@@ -57,7 +60,7 @@ class BodyRenderer:
         self.ctx = ctx
         self.size = (int(size[0]), int(size[1]))
         self.renderer = Renderer(ctx, self.size, samples, samples)
-        self._uploaded: dict[str, tuple[Any, Any]] = {}
+        self._uploaded: dict[str, None] = {}  # keys in least-recently-used order
 
     def release(self) -> None:
         """Free the renderer (and the GL context when it was made here)."""
@@ -66,21 +69,34 @@ class BodyRenderer:
             self.ctx.release()
 
     def _key(self, body: Body) -> str:
-        """The renderer's mesh of ``body`` (uploaded once per mesh and colour array)."""
+        """The renderer's mesh of ``body``, keyed by its content (vertices, faces, colours), so equal
+        geometry is uploaded once however often it is rebuilt (posed skin pieces are new objects
+        every picture); at most ``MAX_CACHED`` meshes are kept, the least recently used go first."""
         colours = body.vertex_colours
-        key = f"body:{id(body.mesh)}:{id(colours) if colours is not None else 0}"
-        if self._uploaded.get(key) != (body.mesh, colours):
-            m = body.mesh
-            v = np.asarray(m.vertices, float)
-            f = np.asarray(m.faces, np.int64).reshape(-1, 3)
-            if colours is None:
-                mesh = RenderMesh.from_triangles(v, f)
-            else:  # per-vertex colours stay on their vertices: smooth normals, no crease splits
-                from jackpy.render.mesh import vertex_normals
+        v = np.ascontiguousarray(body.mesh.vertices, float)
+        f = np.ascontiguousarray(np.asarray(body.mesh.faces, np.int64).reshape(-1, 3))
+        digest = hashlib.blake2b(v.tobytes(), digest_size=16)
+        digest.update(f.tobytes())
+        normals = getattr(body.mesh, "normals", None)
+        for extra in (colours, normals):
+            digest.update(b"-" if extra is None else np.ascontiguousarray(extra, float).tobytes())
+        key = f"body:{digest.hexdigest()}"
+        if key in self._uploaded:
+            self._uploaded[key] = self._uploaded.pop(key)  # most recently used last
+            return key
+        if colours is None and normals is None:
+            mesh = RenderMesh.from_triangles(v, f)
+        else:  # given normals, or per-vertex colours on their vertices: smooth, no crease splits
+            from jackpy.render.mesh import vertex_normals
 
-                mesh = RenderMesh(v, vertex_normals(v, f), f, np.asarray(colours, float).reshape(-1, 3))
-            self.renderer.add_mesh(key, mesh, replace=True)
-            self._uploaded[key] = (body.mesh, colours)
+            mesh = RenderMesh(v, vertex_normals(v, f) if normals is None else normals, f,
+                              None if colours is None else np.asarray(colours, float).reshape(-1, 3))
+        self.renderer.add_mesh(key, mesh, replace=True)
+        self._uploaded[key] = None
+        while len(self._uploaded) > self.MAX_CACHED:
+            oldest = next(iter(self._uploaded))
+            self.renderer.remove_mesh(oldest)
+            del self._uploaded[oldest]
         return key
 
     def _scene(self, opaque: Sequence[Body], translucent: Sequence[Body], background) -> Scene:

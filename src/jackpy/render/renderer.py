@@ -247,6 +247,13 @@ class Renderer:
         self._meshes[key] = _GpuMesh(self.ctx, mesh)
         self._mesh_version += 1
 
+    def remove_mesh(self, key: str) -> None:
+        """Free the mesh (plain or skinned) cached under ``key``, if any."""
+        for cache in (self._meshes, self._skinned):
+            if key in cache:
+                cache.pop(key).release()
+                self._mesh_version += 1
+
     def has_mesh(self, key: str) -> bool:
         """Whether a mesh (plain or skinned) is cached under ``key``."""
         return key in self._meshes or key in self._skinned
