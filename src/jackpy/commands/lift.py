@@ -74,7 +74,8 @@ def register(subparsers) -> None:
     p.add_argument("--compare", type=_mass, nargs="*", default=None, metavar="KG",
                    help="other loads to plot beside it (default: 1/3 and 2/3 of --load)")
     p.add_argument("--fps", type=_fps, default=30.0, help="frame rate of the baked motion (default 30)")
-    p.add_argument("-o", "--output", required=True, metavar="OUT/", help="folder for lift.json, lift.png, lift.motion.json")
+    p.add_argument("-o", "--output", required=True, metavar="OUT/",
+                   help="folder for lift.json, lift.png, lift.motion.json")
     p.set_defaults(func=run)
 
 

@@ -102,6 +102,8 @@ class LiftTask:
         self.goal = np.asarray(self.goal, dtype=float).reshape(3)
         if self.start is not None:
             self.start = np.asarray(self.start, dtype=float).reshape(3)
+        if not np.all(np.isfinite(self.goal)) or (self.start is not None and not np.all(np.isfinite(self.start))):
+            raise ValueError("goal and start must be finite points (m)")
         if not (self.load_kg >= 0.0 and np.isfinite(self.load_kg)):
             raise ValueError(f"load must be a finite mass >= 0 kg, not {self.load_kg}")
         if not 0.0 < self.comfort <= 1.0:
@@ -116,8 +118,8 @@ class LiftTask:
 
 @dataclass
 class LiftFrame:
-    """One iteration: time (s), the figure's variables (:class:`VariableMap` order), grip and shoulder-joint positions (world m), joint displacements,
-    torque ratios of the monitored DOFs, the effective limit, the strategy used, the active chain,
+    """One iteration: time (s), the figure's variables (:class:`VariableMap` order), grip and
+    shoulder-joint positions (world m), joint displacements, torque ratios of the monitored DOFs, the effective limit, the strategy used, the active chain,
     the work ``sum tau_i dtheta_i`` of the step (J, eq. 5.20) and the energy so far (``sum |dW|``)."""
 
     t: float
@@ -283,7 +285,8 @@ class _Lifter:
                        "waist": [k for k, n in enumerate(names) if n.split("[")[0] in self.spine]}
         dq = vm.dq_dx(vm.x())
         mon = self.monitor.monitored
-        self._drives = {int(v): np.flatnonzero(np.abs(dq[mon, v]) > 1e-12) for v in np.concatenate([self.active, self.waist])}
+        self._drives = {int(v): np.flatnonzero(np.abs(dq[mon, v]) > 1e-12)
+                        for v in np.concatenate([self.active, self.waist])}
         self.lower, self.upper = vm.lower.copy(), vm.upper.copy()
         elevation = vm.names.index(f"{task.hand}_shoulder_complex.elevation")
         self.lower[elevation] = min(max(self.lower[elevation], MIN_ELEVATION), vm.x()[elevation])
@@ -301,7 +304,7 @@ class _Lifter:
         if np.any(x < self.lower - 1e-9) or np.any(x > self.upper + 1e-9):
             return False
         for g, _, sl in self.vmap.group_slices:
-            if not g.is_feasible(x[sl]):
+            if np.any(np.isin(np.arange(sl.start, sl.stop), self.active)) and not g.is_feasible(x[sl]):
                 return False
         return True
 
@@ -388,42 +391,35 @@ class _Lifter:
         log: list[tuple[int, str]] = []
         waist_at = None
         pulling, stuck, best, best_at = False, 0, float(np.linalg.norm(task.goal - s.hand)), 0
-        reached, reason = False, "iteration limit"
+        reason = f"iteration limit ({task.max_iterations})"
         for it in range(1, task.max_iterations + 1):
             dist = float(np.linalg.norm(task.goal - s.hand))
             if dist <= task.tolerance:
-                reached, reason = True, "goal reached"
                 break
             t = frames[-1].t
             limit = self.limit(t)
-            r = s.discomfort
-            x_new, used = None, None
-            if pulling and r <= PB_RELEASE * limit:
+            new, used = None, PULL_BACK
+            if pulling and s.discomfort <= PB_RELEASE * limit:
                 pulling = False
-            if not pulling and r <= limit:
-                if r <= RM_ONSET * limit:
-                    x_new, used = self.try_step(self.available_torque(s, limit), limit), AVAILABLE_TORQUE
-                if x_new is None:
-                    x_new, used = self.try_step(self.reducing_moment(s, limit, self.beta), limit), REDUCING_MOMENT
-                if x_new is None:
-                    x_new = self.try_step(self.reducing_moment(s, limit, wide), limit)
-                if x_new is None:
-                    pulling = True
-            elif not pulling:
-                pulling = True
+            if not pulling and s.discomfort <= limit:
+                if s.discomfort <= RM_ONSET * limit:
+                    new, used = self.within(self.available_torque(s, limit), limit), AVAILABLE_TORQUE
+                if new is None:
+                    new, used = self.within(self.reducing_moment(s, limit, self.beta), limit), REDUCING_MOMENT
+                if new is None:  # the Discomfort band: a larger path deviation is allowed
+                    new = self.within(self.reducing_moment(s, limit, wide), limit)
+            pulling = pulling or new is None
             exhausted = False
             if pulling:
                 used = PULL_BACK
-                x_new = self.pull_back(s)
-                if x_new is not None and s.discomfort - self.monitor_disc(x_new) > PB_MIN_GAIN:
-                    stuck = 0
-                else:
-                    stuck += 1
+                x = self.pull_back(s)
+                new = None if x is None else self.monitor.state(x, self.active)
+                stuck = 0 if new is not None and s.discomfort - new.discomfort > PB_MIN_GAIN else stuck + 1
                 exhausted = stuck >= PB_PATIENCE
             if dist < best - STALL_GAIN:
                 best, best_at = dist, it
-            exhausted = exhausted or it - best_at > STALL_STEPS
-            if exhausted:
+            stalled = it - best_at > STALL_STEPS
+            if exhausted or stalled:
                 if task.allow_waist and waist_at is None:
                     waist_at = len(frames) - 1
                     self.active = np.concatenate([self.active, self.waist])
@@ -432,31 +428,26 @@ class _Lifter:
                     s = self.monitor.state(s.x, self.active)
                     continue
                 reason = (f"stopped: no strategy keeps the torque ratios within the comfort level "
-                          f"(discomfort {s.discomfort:.2f}, limit {limit:.2f})")
+                          f"(discomfort {s.discomfort:.2f}, limit {limit:.2f})" if exhausted or pulling else
+                          f"stopped: the hand came no nearer the goal in {STALL_STEPS} steps "
+                          f"(beyond the chain's reach?)")
                 break
-            if x_new is None:
+            if new is None:
                 continue
             if not log or log[-1][1] != used:
                 log.append((len(frames), used))
-            new = self.monitor.state(x_new, self.active)
             frames.append(self.frame(new, t + self.duration(s, new), used, *self.work(s, new, frames[-1].energy)))
             s = new
-        else:
-            if float(np.linalg.norm(task.goal - s.hand)) <= task.tolerance:
-                reached, reason = True, "goal reached"
-        if not reached and reason == "iteration limit" and float(np.linalg.norm(task.goal - s.hand)) <= task.tolerance:
-            reached, reason = True, "goal reached"
-        return LiftResult(task, frames, reached, reason, self.monitor.monitored_names, self.groups, log, waist_at,
-                          self.fig.name, [int(v) for v in self.waist])
+        reached = float(np.linalg.norm(task.goal - s.hand)) <= task.tolerance
+        return LiftResult(task, frames, reached, "goal reached" if reached else reason, self.monitor.monitored_names,
+                          self.groups, log, waist_at, self.fig.name, [int(v) for v in self.waist])
 
-    def monitor_disc(self, x: np.ndarray) -> float:
-        return float(self.monitor.ratios_at(x).max())
-
-    def try_step(self, x: np.ndarray | None, limit: float) -> np.ndarray | None:
-        """``x`` when the discomfort there stays within ``limit``, else None."""
-        if x is None or self.monitor_disc(x) > limit:
+    def within(self, x: np.ndarray | None, limit: float) -> ChainState | None:
+        """The state at ``x`` when its discomfort stays within ``limit``, else None."""
+        if x is None:
             return None
-        return x
+        state = self.monitor.state(x, self.active)
+        return state if state.discomfort <= limit else None
 
     def work(self, a: ChainState, b: ChainState, energy: float) -> tuple[float, float]:
         dw = float(a.torques @ (b.q - a.q))
