@@ -4,7 +4,9 @@ animation, written with pygltflib (the container library; it reads the file back
 - one node per segment, in the figure's tree from the pelvis (:func:`.bvh_export.hierarchy`), each
   with its rest (neutral posture) translation and rotation relative to its parent;
 - one mesh: every segment's surface at rest in world coordinates, each vertex bound rigidly to its
-  segment (JOINTS_0 = that segment's joint index, WEIGHTS_0 = 1), with vertex normals;
+  segment (JOINTS_0 = that segment's joint index, WEIGHTS_0 = 1), with vertex normals; a standard
+  human's torso is its continuous skin (:mod:`jackpy.body.skin`) instead, each vertex with its
+  blend of up to four vertebra joints, so viewers bend it as the workbench does;
 - one skin over all segment nodes; inverse bind matrices are the inverses of the rest world
   transforms;
 - one animation ``motion``: per node a translation and a rotation channel (LINEAR), one key per
@@ -21,6 +23,7 @@ import numpy as np
 import pygltflib as gl
 from scipy.spatial.transform import Rotation
 
+from jackpy.body.skin import bone_matrices, deform, skin_for
 from jackpy.motion.bvh_export import hierarchy
 
 FLOAT, USHORT, UINT = 5126, 5123, 5125
@@ -91,9 +94,24 @@ def build_gltf(figure, baked, fps: float) -> gl.GLTF2:
             node.children = children[k]
         doc.nodes.append(node)
     # mesh: rest surfaces in world, rigidly bound
-    pos, nrm, joints, faces = [], [], [], []
+    pos, nrm, joints, weights, faces = [], [], [], [], []
     base = 0
+    skin = skin_for(figure)
+    covered = skin.covers if skin is not None else frozenset()
+    node = {seg: k for k, (seg, *_r) in enumerate(tree)}
+    if skin is not None and covered <= node.keys():  # the continuous torso, blended
+        p, n = deform(skin, bone_matrices(skin, rest))
+        pos.append(p)
+        nrm.append(n)
+        joints.append(np.array([node[b] for b in skin.bones])[skin.joints])
+        weights.append(skin.weights)
+        faces.append(skin.faces.copy())
+        base = len(p)
+    else:
+        covered = frozenset()
     for k, (seg, *_r) in enumerate(tree):
+        if seg in covered:
+            continue
         ps = figure.segment(seg).psurf
         mesh = ps.posed_mesh() if ps is not None else None
         if mesh is None or len(mesh.faces) == 0:
@@ -101,16 +119,17 @@ def build_gltf(figure, baked, fps: float) -> gl.GLTF2:
         w = rest[seg]
         pos.append(mesh.vertices @ w[:3, :3].T + w[:3, 3])
         nrm.append(mesh.vertex_normals() @ w[:3, :3].T)
-        joints.append(np.full(len(mesh.vertices), k))
+        rigid = np.zeros((len(mesh.vertices), 4))
+        rigid[:, 0] = 1.0
+        joints.append(np.column_stack([np.full(len(mesh.vertices), k), np.zeros((len(mesh.vertices), 3), int)]))
+        weights.append(rigid)
         faces.append(mesh.faces + base)
         base += len(mesh.vertices)
     pos = np.vstack(pos).astype(np.float32)
     nrm = np.vstack(nrm)
     nrm = (nrm / np.maximum(np.linalg.norm(nrm, axis=1, keepdims=True), 1e-12)).astype(np.float32)
-    j4 = np.zeros((len(pos), 4), dtype=np.uint16)
-    j4[:, 0] = np.concatenate(joints)
-    w4 = np.zeros((len(pos), 4), dtype=np.float32)
-    w4[:, 0] = 1.0
+    j4 = np.vstack(joints).astype(np.uint16)
+    w4 = np.vstack(weights).astype(np.float32)
     idx = np.concatenate(faces).astype(np.uint32).reshape(-1)
     attrs = gl.Attributes(POSITION=buf.add(pos, "VEC3", FLOAT, ARRAY, bounds=True),
                           NORMAL=buf.add(nrm, "VEC3", FLOAT, ARRAY),
