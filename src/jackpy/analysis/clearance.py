@@ -43,7 +43,7 @@ into it: touching a surface passes, passing through a desk or a thin partition d
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Collection, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -129,10 +129,11 @@ def _tf(t: np.ndarray):
 
 def eroded(mesh: Mesh, depth: float) -> Mesh:
     """``mesh`` with every vertex moved ``depth`` metres inwards along its vertex normal (at most 45 %
-    of the mesh's smallest half-extent along its principal axes); the outside is told by the sign
-    of the enclosed volume, so either winding works."""
+    of the mesh's smallest half-extent along its principal axes; a negative ``depth`` grows it
+    outwards by ``-depth``); the outside is told by the sign of the enclosed volume, so either
+    winding works."""
     v, f = mesh.vertices, mesh.faces
-    if depth <= 0.0 or len(f) == 0:
+    if depth == 0.0 or len(f) == 0:
         return mesh
     volume = float(np.einsum("ij,ij->i", v[f[:, 0]], np.cross(v[f[:, 1]], v[f[:, 2]])).sum()) / 6.0
     centred = v - v.mean(axis=0)
@@ -142,6 +143,42 @@ def eroded(mesh: Mesh, depth: float) -> Mesh:
     d = min(depth, 0.45 * half)
     inward = -1.0 if volume >= 0.0 else 1.0
     return Mesh(v + inward * d * mesh.vertex_normals(), f.copy())
+
+
+#: the broad phase splits an object's triangles into at most this many boxes ...
+MAX_PARTS = 256
+#: ... of at least this many triangles each
+PART_TRIANGLES = 1
+
+
+def part_boxes(mesh: Mesh) -> np.ndarray:
+    """(k, 2, 3) boxes (mesh frame) that together cover every triangle of ``mesh``: the triangles
+    split at the median of their centres along the widest axis, again and again (at most
+    :data:`MAX_PARTS` boxes of at least :data:`PART_TRIANGLES` triangles). A box's walls or a desk's
+    top and legs get tight boxes, so a hand inside the box is near none of them."""
+    v = np.asarray(mesh.vertices, dtype=float)
+    tri = v[np.asarray(mesh.faces, dtype=np.int64)]  # (n, 3, 3)
+    centres = tri.mean(axis=1)
+    parts, out = [np.arange(len(tri))], []
+    while parts:
+        idx = parts.pop(0)  # breadth first: the boxes split evenly until the cap
+        if len(idx) < 2 * PART_TRIANGLES or len(parts) + len(out) + 2 > MAX_PARTS:
+            out.append(idx)
+            continue
+        c = centres[idx]
+        axis = int(np.argmax(c.max(axis=0) - c.min(axis=0)))
+        order = idx[np.argsort(c[:, axis], kind="stable")]
+        half = len(order) // 2
+        parts += [order[:half], order[half:]]
+    return np.array([[tri[idx].reshape(-1, 3).min(axis=0), tri[idx].reshape(-1, 3).max(axis=0)] for idx in out])
+
+
+def _world_boxes(boxes: np.ndarray, t: np.ndarray) -> np.ndarray:
+    """World AABBs (k, 2, 3) of local boxes ``boxes`` (k, 2, 3) moved by ``t`` (4x4)."""
+    centre, half = (boxes[:, 0] + boxes[:, 1]) / 2, (boxes[:, 1] - boxes[:, 0]) / 2
+    c = centre @ t[:3, :3].T + t[:3, 3]
+    h = half @ np.abs(t[:3, :3]).T
+    return np.stack([c - h, c + h], axis=1)
 
 
 def _sphere(mesh: Mesh) -> tuple[np.ndarray, float]:
@@ -156,11 +193,13 @@ class ClearanceChecker:
 
     Call :meth:`update` after the posture or an object's location changes, then query. Object bodies
     are named like their figure when it has one segment with geometry, ``figure.segment`` otherwise.
-    ``erode`` (metres) shrinks the figure's segments (module docstring: contact tolerance).
+    ``erode`` (metres) shrinks the figure's segments (module docstring: contact tolerance);
+    ``segments`` keeps only those segments (e.g. the ones a planned arm moves).
     """
 
     def __init__(self, figure: Figure, objects: Sequence[Figure] = (), self_collision: bool = True,
-                 ignore_initial: bool = True, grid_budget: int = 500_000, erode: float = 0.0) -> None:
+                 ignore_initial: bool = True, grid_budget: int = 500_000, erode: float = 0.0,
+                 segments: Collection[str] | None = None) -> None:
         if fcl is None:
             raise JackpyError("collision and clearance need the package 'python-fcl' (pip install python-fcl)")
         self.figure = figure
@@ -172,7 +211,7 @@ class ClearanceChecker:
         cover, xpts, xcount, xr = [], [], [], []
         for name in kin.segment_names:
             seg = figure.segments[name]
-            mesh = seg.psurf.posed_mesh() if seg.psurf is not None else None
+            mesh = seg.psurf.posed_mesh() if seg.psurf is not None and (segments is None or name in segments) else None
             if mesh is None or len(mesh.faces) == 0:
                 continue
             mesh = eroded(mesh, erode)
@@ -214,6 +253,8 @@ class ClearanceChecker:
         self._body_obj = []
         self._body_box_local: list[np.ndarray] = []
         self._body_mesh: list[Mesh] = []
+        self._part_box_local: list[np.ndarray] = []  # per body: (k, 2, 3) boxes of its connected parts
+        self._part_body: list[int] = []
         self._body_grid: list[DistanceGrid | None] = []
         self._grid_budget = grid_budget
         self._vb_cache: dict[int, dict[int, tuple]] = {}
@@ -227,9 +268,14 @@ class ClearanceChecker:
                 self._body_src.append((obj, n))
                 self._body_obj.append(fcl.CollisionObject(_bvh(m), fcl.Transform()))
                 self._body_box_local.append(m.bounds())
+                parts = part_boxes(m)
+                self._part_box_local.append(parts)
+                self._part_body.extend([len(self.body_names) - 1] * len(parts))
                 self._body_mesh.append(m)
                 self._body_grid.append(None)
         self._box_world = np.zeros((len(self.body_names), 2, 3))
+        self._part_box_world = np.zeros((len(self._part_body), 2, 3))
+        self._part_start = np.searchsorted(np.array(self._part_body, dtype=int), np.arange(len(self.body_names)))
         self._body_world = np.tile(np.eye(4), (len(self.body_names), 1, 1))
         # self-collision pairs: not adjacent
         self._pairs = np.zeros((0, 2), dtype=int)
@@ -242,6 +288,7 @@ class ClearanceChecker:
         self._seg_world = np.zeros((len(self.segment_names), 4, 4))
         self._centre_world = np.zeros((len(self.segment_names), 3))
         self._placed = np.zeros(len(self.segment_names), dtype=bool)
+        self._objects_placed = False
         self.update()
         if ignore_initial and len(self._pairs):
             touching = {tuple(p) for p in self._colliding_pairs()}
@@ -259,11 +306,15 @@ class ClearanceChecker:
         self._placed[:] = False
         for k, ((obj, seg), co, box) in enumerate(zip(self._body_src, self._body_obj, self._body_box_local)):
             t = obj.location if len(obj.segments) == 1 else obj.world_transforms()[seg]
+            if self._objects_placed and np.array_equal(t, self._body_world[k]):
+                continue  # the object has not moved
             co.setTransform(_tf(t))
             self._body_world[k] = t
-            corners = np.array([[box[i, 0], box[j, 1], box[l, 2]] for i in (0, 1) for j in (0, 1) for l in (0, 1)])
-            w = corners @ t[:3, :3].T + t[:3, 3]
-            self._box_world[k] = (w.min(axis=0), w.max(axis=0))
+            self._box_world[k] = _world_boxes(box[None], t)[0]
+            start = self._part_start[k]
+            parts = self._part_box_local[k]
+            self._part_box_world[start:start + len(parts)] = _world_boxes(parts, t)
+        self._objects_placed = True
 
     def _place(self, k: int) -> object:
         if not self._placed[k]:
@@ -278,12 +329,26 @@ class ClearanceChecker:
         d = np.maximum(np.maximum(boxes[None, :, 0] - c, c - boxes[None, :, 1]), 0.0)
         return np.maximum(np.sqrt((d ** 2).sum(axis=2)) - self._radius[:, None], 0.0)
 
+    def _near_parts(self, segs: np.ndarray, b: int) -> np.ndarray:
+        """Which of segments ``segs`` have a bounding sphere touching one of body ``b``'s part boxes
+        (a box's walls, a desk's top and legs; :func:`part_boxes`)."""
+        start = self._part_start[b]
+        boxes = self._part_box_world[start:start + len(self._part_box_local[b])]
+        c = self._centre_world[segs][:, None, :]
+        d = np.maximum(np.maximum(boxes[None, :, 0] - c, c - boxes[None, :, 1]), 0.0)
+        return ((d * d).sum(axis=2) <= (self._radius[segs] ** 2)[:, None]).any(axis=1)
+
     # ----- queries -------------------------------------------------------------------------------
     def object_collisions(self) -> list[tuple[str, str]]:
         """``(segment, body)`` for every segment touching an object body."""
         out = []
         req = fcl.CollisionRequest()
-        for s, b in np.argwhere(self._sphere_box_gap() <= 0.0):
+        near = self._sphere_box_gap() <= 0.0
+        pairs = []
+        for b in np.flatnonzero(near.any(axis=0)):
+            segs = np.flatnonzero(near[:, b])
+            pairs += [(int(s), int(b)) for s in segs[self._near_parts(segs, b)]]
+        for s, b in sorted(pairs):
             if fcl.collide(self._place(s), self._body_obj[b], req, fcl.CollisionResult()):
                 out.append((self.segment_names[s], self.body_names[b]))
         return out

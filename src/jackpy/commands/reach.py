@@ -1,6 +1,7 @@
 """``jackpy reach``: one collision-aware reach in a workplace scene, optionally by staged posture
-planning (arm, torso, knees, step); writes ``reach.json`` with the verdict, the stage and every
-attempt (docs/planning.md)."""
+planning (arm, torso, knees, step) and with a planned collision-free reach motion (``--plan``, OMPL);
+writes ``reach.json`` with the verdict, the stage, every attempt and the motion's summary, and
+``reach.motion.json`` (baked frames) with ``--plan`` (docs/planning.md)."""
 
 from __future__ import annotations
 
@@ -17,9 +18,15 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--stages", action="store_true",
                    help="staged posture planning: arm, then torso, then knees bent, then a step, each only "
                         "when the one before fails (default: the arm only)")
+    p.add_argument("--plan", action="store_true",
+                   help="plan a collision-free reach motion of the arm (OMPL RRT-Connect, needs the planning "
+                        "extra) from the standing posture to the target; writes reach.motion.json")
+    p.add_argument("--seed", type=int, default=0, help="seed of the motion planner (default 0: repeatable)")
+    p.add_argument("--fps", type=float, default=30.0, help="frame rate of reach.motion.json (default 30)")
     p.add_argument("--contact-tolerance", type=float, default=10.0, metavar="MM",
                    help="deepest allowed contact of a body segment with an object (mm, default 10)")
-    p.add_argument("-o", "--output", required=True, metavar="DIR", help="folder for reach.json")
+    p.add_argument("-o", "--output", required=True, metavar="DIR",
+                   help="folder for reach.json (and reach.motion.json with --plan)")
     p.set_defaults(func=run)
 
 
@@ -30,7 +37,7 @@ def run(args: argparse.Namespace) -> int:
     from jackpy.atomic import atomic_write_text
     from jackpy.errors import JackpyError
     import json
-    from jackpy.planning.stages import STAGES, staged_reach
+    from jackpy.planning.stages import STAGE_TEXT, STAGES, staged_reach
     from jackpy.scene.workplace import load_workplace, resolve_target, stand_figure
 
     wp = load_workplace(args.scene)
@@ -39,6 +46,8 @@ def run(args: argparse.Namespace) -> int:
         raise JackpyError(f"--figure takes one SEX:PERCENTILE, not {args.figure!r}")
     if args.contact_tolerance < 0:
         raise JackpyError("--contact-tolerance must be >= 0")
+    if not args.fps > 0:
+        raise JackpyError("--fps must be > 0")
     obj, target = resolve_target(wp.env, args.target)
     figure = _human(*figures[0])
     stand_figure(figure, wp.stand)
@@ -51,7 +60,20 @@ def run(args: argparse.Namespace) -> int:
     out = {"scene": str(args.scene), "figure": figure.name, "target": args.target, "target_position": target.tolist(),
            "hand": hand, "stage": s.stage, "text": s.describe(), "reached": s.result.reached,
            "shortfall_m": s.result.shortfall, "attempts": attempts}
+    out["stages"] = [{"stage": st, "text": STAGE_TEXT[st], "reached": r.reached} for st, r in s.attempts]
     Path(args.output).mkdir(parents=True, exist_ok=True)
+    motion = None
+    if args.plan:
+        from jackpy.motion import motion_file
+        from jackpy.planning.reach_motion import plan_reach_motion
+
+        motion = plan_reach_motion(figure, target, hand, list(wp.objects.values()), obj.name,
+                                   contact_tolerance=args.contact_tolerance / 1000.0, seed=args.seed)
+        out["motion"] = motion.to_dict()
+        if motion.planned:
+            motion_file.save(motion.motion_file(args.fps, human=args.figure), Path(args.output) / "reach.motion.json")
     atomic_write_text(Path(args.output) / "reach.json", json.dumps(out, indent=1) + "\n")
     print(f"{args.figure} {args.target}: {s.describe()}")
+    if motion is not None:
+        print(f"  {motion.describe()}")
     return 0
