@@ -16,16 +16,19 @@ from jackpy.behaviors.hands import Hands, HandsParams
 from jackpy.behaviors.limit_springs import LimitSprings, LimitSpringsParams
 from jackpy.behaviors.loop import BehaviorLoop, Frame, FrameReport
 from jackpy.behaviors.pelvis import Pelvis, PelvisParams
+from jackpy.behaviors.seat import Seat, SeatParams
 from jackpy.behaviors.stepping import Stepping, SteppingParams
 from jackpy.behaviors.torso import Torso, TorsoParams
 
 
 def default_behaviors() -> list[Behavior]:
     """One instance of every behavior with default parameters, in frame order."""
-    return [AutoRoot(), Feet(), Pelvis(), Balance(), Stepping(), Torso(), Gaze(), Hands(), LimitSprings()]
+    return [AutoRoot(), Seat(), Feet(), Pelvis(), Balance(), Stepping(), Torso(), Gaze(), Hands(),
+            LimitSprings()]
 
 
 __all__ = ["Anatomy", "AutoRoot", "AutoRootParams", "Balance", "BalanceParams", "Behavior", "BehaviorBase",
            "BehaviorLoop", "Feet", "FeetParams", "Frame", "FrameReport", "Gaze", "GazeParams", "Hands",
-           "HandsParams", "LimitSprings", "LimitSpringsParams", "ParamSpec", "Pelvis", "PelvisParams", "Stepping",
-           "SteppingParams", "Torso", "TorsoParams", "default_behaviors", "describe", "synthetic_anatomy"]
+           "HandsParams", "LimitSprings", "LimitSpringsParams", "ParamSpec", "Pelvis", "PelvisParams", "Seat",
+           "SeatParams", "Stepping", "SteppingParams", "Torso", "TorsoParams", "default_behaviors", "describe",
+           "synthetic_anatomy"]

@@ -14,10 +14,10 @@ import numpy as np
 
 from jackpy.behaviors.grasp import GraspObject, GraspParams, GraspResult, close_fingers, palm_goal, preshape
 from jackpy.behaviors.loop import BehaviorLoop
-from jackpy.behaviors.state import Attachment
-from jackpy.behaviors.support import floor
+from jackpy.behaviors.state import Attachment, FootState, HandState, SeatState
+from jackpy.behaviors.support import floor, yaw_of
 from jackpy.behaviors.torso import MODES, bend_spine
-from jackpy.peabody.transforms import rigid_inverse
+from jackpy.peabody.transforms import rigid_inverse, rotation_matrix
 
 OTHER = {"left": "right", "right": "left"}
 
@@ -112,6 +112,51 @@ def set_foot_behavior(loop: BehaviorLoop, side: str, mode: str | None = None, he
         if heel not in ("floor", "free"):
             raise ValueError(f"heel must be 'floor' or 'free', not {heel!r}")
         fs.heel = heel
+
+
+def sit(loop: BehaviorLoop, seat_height: float, footrest_height: float = 0.0) -> bool:
+    """Seat the figure (a standard human) erect on a seat ``seat_height`` high, feet flat on a
+    footrest ``footrest_height`` high where the shanks reach (:func:`jackpy.body.seated.sit`; the arms
+    hang at the neutral elevation); from then on the seat behavior keeps the ischia on the seat and
+    the feet behavior the feet where they rest, until :func:`stand_up`. A foot that cannot reach the
+    footrest hangs, held where it is. Goals of hands, pelvis, torso and COM are cleared. Heights are
+    world y (m); returns whether both feet rest on the footrest."""
+    from jackpy.body.seated import seat_contact_points
+    from jackpy.body.seated import sit as seat_figure
+    from jackpy.body.skeleton import NEUTRAL_ARM_ELEVATION
+
+    fig, st, a = loop.figure, loop.state, loop.anatomy
+    # rooted at the pelvis, upright, facing where the pelvis faces: sit() bends the hips about it
+    loop.set_root("pelvis")
+    site = fig.site_location(a.pelvis, a.pelvis_site)
+    yaw = yaw_of(fig.location[:3, :3] @ (site[:3, :3].T @ a.pelvis_forward))
+    loc = fig.location.copy()
+    loc[:3, :3] = rotation_matrix(np.array([0.0, 1.0, 0.0]), yaw)[:3, :3] @ site[:3, :3]
+    fig.location = loc
+    resting = seat_figure(fig, seat_height, footrest_height)
+    for side in a.hands:
+        g = fig.groups.get(f"{side}_shoulder_complex")
+        if g is not None:
+            theta = g.angles.copy()
+            theta[list(g.angle_names).index("elevation")] = np.radians(NEUTRAL_ARM_ELEVATION)
+            g.set_angles(fig, theta)
+    st.seat = SeatState(float(seat_height), float(footrest_height), seat_contact_points(fig), resting)
+    st.root_claimed = True
+    st.feet = {}
+    for side, spec in a.feet.items():
+        on_rest = abs(fig.site_world(*spec.heel)[1, 3] - footrest_height) < 0.002
+        st.feet[side] = FootState(fig.site_world(*spec.ball), "pivot" if on_rest else "hold",
+                                  "floor" if on_rest else "free")
+    st.hands = {s: HandState() for s in a.hands}
+    st.pelvis_goal, st.pelvis_user, st.torso_goal, st.com_drag = None, False, None, None
+    return resting
+
+
+def stand_up(loop: BehaviorLoop) -> None:
+    """Leave the seated mode: the seat is cleared and the automatic root chooses the root again
+    (the posture stays; drag the pelvis or feet to stand)."""
+    loop.state.seat = None
+    loop.state.root_claimed = False
 
 
 def move_com(loop: BehaviorLoop, point: np.ndarray) -> None:

@@ -52,6 +52,18 @@ class HandState:
 
 
 @dataclass
+class SeatState:
+    """Where a seated figure sits (:mod:`jackpy.behaviors.seat`): the seat plane's and the footrest's
+    heights (world y, m), the two seat contacts' world points (2, 3) where they were put down, and
+    whether both feet reach the footrest."""
+
+    seat_height: float
+    footrest_height: float
+    contacts: np.ndarray
+    feet_resting: bool = True
+
+
+@dataclass
 class BehaviorState:
     """Everything the behaviors keep between frames."""
 
@@ -71,3 +83,4 @@ class BehaviorState:
     head_target: np.ndarray | None = None
     eyes_target: np.ndarray | None = None
     steps_taken: int = 0
+    seat: SeatState | None = None

@@ -148,6 +148,9 @@ class JointGroup:
                        for a, b in self.pieces]
         if len({a.shape[0] for a, _ in self.pieces}) > 1 or any(a.shape[0] != b.size for a, b in self.pieces):
             raise FigureError(f"group {self.name!r}: limit pieces need the same number of rows and bounds")
+        # per piece, per row: (coefficients / norm, bound / norm) as floats (piece_at runs every solve)
+        self._piece_rows = [[(tuple((r / np.linalg.norm(r)).tolist()), float(c / np.linalg.norm(r)))
+                             for r, c in zip(a, b)] for a, b in self.pieces]
         self.lower = np.asarray(self.lower, dtype=float).reshape(n)
         self.upper = np.asarray(self.upper, dtype=float).reshape(n)
         self.A = np.asarray(self.A, dtype=float).reshape(-1, n)
@@ -180,9 +183,9 @@ class JointGroup:
         (largest slack over the row norms; the least violated when outside all). -1 without pieces."""
         if not self.pieces:
             return -1
-        theta = np.asarray(theta, dtype=float)
-        slack = [np.min((b - a @ theta) / np.linalg.norm(a, axis=1)) for a, b in self.pieces]
-        return int(np.argmax(slack))
+        t = np.asarray(theta, dtype=float).tolist()
+        slack = [min(c - sum(x * y for x, y in zip(r, t)) for r, c in rows) for rows in self._piece_rows]
+        return slack.index(max(slack))
 
     def rows_at(self, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """The convex limit at ``theta``: static rows ``A``, ``b`` plus those of :meth:`piece_at`."""
@@ -244,6 +247,8 @@ class VariableMap:
         lo, hi = figure.lower, figure.upper
         self.lower = np.concatenate([lo[self.free_dofs]] + [g.lower for g, _, _ in slices])
         self.upper = np.concatenate([hi[self.free_dofs]] + [g.upper for g, _, _ in slices])
+        self._piecewise = [g for g, _, _ in slices if g.pieces]
+        self._rows: tuple[tuple[int, ...], tuple[np.ndarray, np.ndarray]] | None = None
 
     def x(self) -> np.ndarray:
         """Current variables from the figure."""
@@ -270,11 +275,15 @@ class VariableMap:
     def has_pieces(self) -> bool:
         """True when some group has a non-convex (piecewise) limit: :meth:`linear_constraints`
         then depends on the current group angles."""
-        return any(g.pieces for g, _, _ in self.group_slices)
+        return bool(self._piecewise)
 
     def linear_constraints(self) -> tuple[np.ndarray, np.ndarray]:
         """All groups' ``A x <= b`` rows over the full variable vector, with each piecewise group's
-        piece chosen at its current angles (:meth:`JointGroup.rows_at`)."""
+        piece chosen at its current angles (:meth:`JointGroup.rows_at`). While the chosen pieces stay
+        the same, the same (read-only) arrays are returned, so a caller can tell a change by identity."""
+        key = tuple(g.piece_at(g.angles) for g in self._piecewise)
+        if self._rows is not None and self._rows[0] == key:
+            return self._rows[1]
         rows, rhs = [], []
         for g, _, sl in self.group_slices:
             ga, gb = g.rows_at(g.angles)
@@ -283,9 +292,11 @@ class VariableMap:
                 a[:, sl] = ga
                 rows.append(a)
                 rhs.append(gb)
-        if not rows:
-            return np.zeros((0, self.nx)), np.zeros(0)
-        return np.vstack(rows), np.concatenate(rhs)
+        out = (np.vstack(rows), np.concatenate(rhs)) if rows else (np.zeros((0, self.nx)), np.zeros(0))
+        for arr in out:
+            arr.flags.writeable = False
+        self._rows = (key, out)
+        return out
 
     def apply(self, x: np.ndarray) -> None:
         """Write variables ``x`` into the figure (free DOFs and group angles)."""
