@@ -212,8 +212,9 @@ class Compiled:
         x = np.concatenate([q[self.vm.free_dofs]] + [g.angles for g, _, _ in self.vm.group_slices])
         z = x[self.vidx] / self.scale
         if self.vm.has_pieces:  # a non-convex group limit: the rows of its piece at the current angles
-            self.A_x, self.b_x = self.vm.linear_constraints()
-            self._A_z = (self.A_x[:, self.vidx] * self.scale)[self._row_keep]
+            A_x, self.b_x = self.vm.linear_constraints()  # the same arrays while the piece stays
+            if A_x is not self.A_x:
+                self.A_x, self._A_z = A_x, (A_x[:, self.vidx] * self.scale)[self._row_keep]
         if self.A_x.shape[0]:
             rest = x.copy()
             rest[self.vidx] = 0.0
