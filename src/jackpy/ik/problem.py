@@ -195,6 +195,10 @@ class Compiled:
             row += idx.size
             col += used.size
         self._free_scale = self.scale[:self.n_free_vars]
+        #: (key, Context, chain-rule blocks) of the last evaluation: the posture's geometry does not
+        #: depend on the targets, so the next solve's first evaluation (a warm start at the same
+        #: posture, new targets) reuses it and evaluates only the goals
+        self._geometry: tuple | None = None
         self._level_slots = {lv: [k for k, (_, l) in enumerate(self.entries) if l == lv] for lv in self.levels}
         self.arm: ArmChain | None = None
         if len(self.entries) == 1 and not self.groups:
@@ -248,13 +252,21 @@ class Compiled:
         """One forward pass; every goal's residual and Jacobian (over ``z``) from it.
 
         The goals' Jacobians over the DOF columns are stacked per level and taken to ``z`` once per
-        level (:meth:`to_z`), not goal by goal."""
+        level (:meth:`_to_z`), not goal by goal. The forward pass, the :class:`Context` (with the
+        twists and COM it has worked out) and the drivers' Jacobians are kept for the last posture."""
         x = self.x_of(x_base, z)
         q = self.q_of(q_base, x)
-        fk = self.kin.forward(q, self.figure.location)
-        ctx = Context(self.kin, fk, self.cols, self.columns)
-        chain = [(lo_r, hi_r, lo_c, hi_c, np.asarray(drv.jacobian(x[sl]), dtype=float)[:, used]
-                  * self.scale[lo_c:hi_c]) for drv, sl, used, lo_r, hi_r, lo_c, hi_c in self._blocks]
+        location = self.figure.location
+        key = (x.tobytes(), q.tobytes(), location.tobytes())
+        geometry = self._geometry
+        if geometry is not None and geometry[0] == key:  # a warm start at the last iterate
+            ctx, chain = geometry[1], geometry[2]
+        else:
+            fk = self.kin.forward(q, location)
+            ctx = Context(self.kin, fk, self.cols, self.columns)
+            chain = [(lo_r, hi_r, lo_c, hi_c, np.asarray(drv.jacobian(x[sl]), dtype=float)[:, used]
+                      * self.scale[lo_c:hi_c]) for drv, sl, used, lo_r, hi_r, lo_c, hi_c in self._blocks]
+            self._geometry = (key, ctx, chain)
         evals = [g.evaluate(ctx) for g, _ in self.entries]
         levels = {}
         for lv, slots in self._level_slots.items():

@@ -8,6 +8,8 @@ Within 1e-9 m of the target ``u`` is taken as ``v``: no NaN, zero pull.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from jackpy.ik.goals.base import (
@@ -49,7 +51,7 @@ class Aim(SiteGoal):
         r = w[:3, 3]
         v = w[:3, :3] @ self.axis
         d = self.target - r
-        n = float(np.linalg.norm(d))
+        n = math.sqrt(float(d @ d))
         Jrv = ctx.stacked_jacobian(self.seg, np.stack([r, v]), (1.0, 1.0), point=True)
         Jr, Jv = Jrv[:3], Jrv[3:]
         if n < 1e-9:

@@ -17,6 +17,8 @@ that it holds, and :meth:`SiteGoal.set_frame` moves its targets with a world fra
 from __future__ import annotations
 
 import inspect
+import math
+import os
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, ClassVar
@@ -44,6 +46,34 @@ _LC9 = np.array([[0, 0, 0], [0, 0, -1], [0, 1, 0],
                  [0, -1, 0], [1, 0, 0], [0, 0, 0]], dtype=float)
 
 
+def _site_rows(mom, ang, moved, vectors, weights, point, out):  # pragma: no cover - compiled
+    """Rows ``w_k d(v_k)/dq = w_k (a x v_k)`` (plus ``w_0 m`` for a point) into ``out`` (3k, ncols),
+    the columns masked by ``moved`` (the DOFs that move the segment): :meth:`Context.stacked_jacobian`
+    as one loop."""
+    nc = ang.shape[1]
+    for j in range(vectors.shape[0]):
+        v0, v1, v2 = vectors[j, 0], vectors[j, 1], vectors[j, 2]
+        w = weights[j]
+        add = point and j == 0
+        for c in range(nc):
+            m = moved[c] * w
+            a0, a1, a2 = ang[0, c], ang[1, c], ang[2, c]
+            r0, r1, r2 = a1 * v2 - a2 * v1, a2 * v0 - a0 * v2, a0 * v1 - a1 * v0
+            if add:
+                r0, r1, r2 = r0 + mom[0, c], r1 + mom[1, c], r2 + mom[2, c]
+            out[3 * j, c], out[3 * j + 1, c], out[3 * j + 2, c] = m * r0, m * r1, m * r2
+
+
+try:
+    if os.environ.get("JACKPY_NO_JIT"):
+        raise ImportError("disabled by JACKPY_NO_JIT")
+    import numba
+
+    _site_rows_compiled = numba.njit(cache=True, nogil=True)(_site_rows)
+except ImportError:  # pragma: no cover - numba is optional
+    _site_rows_compiled = None
+
+
 def skews(vectors: np.ndarray) -> np.ndarray:
     """Stacked cross-product matrices ``[v_k]x`` of the rows of ``vectors`` (k,3), as (3k, 3)."""
     v = np.asarray(vectors, dtype=float).reshape(-1, 3)
@@ -59,7 +89,10 @@ class Columns:
         self.kin, self.cols = kin, np.asarray(cols, dtype=int)
         self.sign = kin.dof_sign[self.cols].astype(float)
         self.trans = np.flatnonzero(np.isin(self.cols, kin.trans_dofs))
-        self.moved = kin.seg_moved_by_dof[:, self.cols].astype(float)
+        self.moved = np.ascontiguousarray(kin.seg_moved_by_dof[:, self.cols], dtype=float)
+
+
+_ONE = np.ones(1)
 
 
 class Context:
@@ -74,6 +107,9 @@ class Context:
     and ``d(direction v)/dq = -[v]x a``: any number of points and directions of one segment are one
     small product with stacked ``[.]x`` matrices (:func:`skews`).
     """
+
+    #: site rows by the compiled loop (numba installed and not ``JACKPY_NO_JIT``)
+    compiled: bool = _site_rows_compiled is not None
 
     def __init__(self, kin: Kinematics, fk: FKResult, cols: np.ndarray, columns: Columns | None = None) -> None:
         if columns is None or columns.kin is not kin:
@@ -90,7 +126,7 @@ class Context:
             t = columns.trans
             mom[:, t] = a[:, t]
             a[:, t] = 0.0
-        self._ang, self._mom = a, mom
+        self._ang, self._mom = np.ascontiguousarray(a), np.ascontiguousarray(mom)
         self._twists: dict[int, tuple[np.ndarray, np.ndarray]] = {}
         self._com: tuple[np.ndarray, np.ndarray] | None = None
 
@@ -108,13 +144,24 @@ class Context:
 
     def point_jacobian(self, seg: int, point: np.ndarray) -> np.ndarray:
         """d(world point fixed on ``seg``)/dq over ``cols``, (3, ncols)."""
+        if self.compiled:
+            return self.stacked_jacobian(seg, point, _ONE, point=True)
         mom, ang = self.twist(seg)
         return mom - skews(point) @ ang
 
     def stacked_jacobian(self, seg: int, vectors: np.ndarray, weights: np.ndarray,
                          point: bool = False) -> np.ndarray:
         """Rows ``w_k d(v_k)/dq`` (3k, ncols) for directions ``v_k`` (rows of ``vectors``) fixed on
-        ``seg``, in one product; with ``point`` the first row of ``vectors`` is a point instead."""
+        ``seg``, in one product; with ``point`` the first row of ``vectors`` is a point instead.
+
+        With numba (:attr:`compiled`) one compiled loop over the unmasked twist, else the numpy
+        products over the segment's masked twist (the reference the tests compare against)."""
+        if self.compiled:
+            v = np.ascontiguousarray(vectors, dtype=float).reshape(-1, 3)
+            out = np.empty((3 * v.shape[0], self._ang.shape[1]))
+            _site_rows_compiled(self._mom, self._ang, self.columns.moved[seg], v,
+                                np.ascontiguousarray(weights, dtype=float).reshape(-1), point, out)
+            return out
         mom, ang = self.twist(seg)
         w = np.asarray(weights, dtype=float)
         J = (skews(vectors) * np.repeat(-w, 3)[:, None]) @ ang
@@ -332,7 +379,8 @@ def rotation3(r: np.ndarray) -> np.ndarray:
 
 def angle_deg(a: np.ndarray, b: np.ndarray) -> float:
     """Angle between unit vectors ``a`` and ``b`` in degrees (robust near 0 and 180)."""
-    return float(np.degrees(2.0 * np.arctan2(np.linalg.norm(a - b), np.linalg.norm(a + b))))
+    d, s = a - b, a + b
+    return math.degrees(2.0 * math.atan2(math.sqrt(float(d @ d)), math.sqrt(float(s @ s))))
 
 
 def unit_factor(degrees: float, length: float = 1.0) -> float:

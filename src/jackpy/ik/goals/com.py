@@ -10,6 +10,8 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
+import math
+
 import numpy as np
 
 from jackpy.errors import FigureError
@@ -54,6 +56,6 @@ class CentreOfMass(Goal):
 
     def evaluate(self, ctx: Context) -> GoalEval:
         c, Jc = ctx.com()
-        P = np.eye(3) - np.outer(self.up, self.up)
-        f = P @ (c - self.point)
-        return GoalEval(f, P @ Jc, metres=float(np.linalg.norm(f)))
+        up, d = self.up, c - self.point  # (I - up up^T) applied without forming it
+        f = d - up * float(up @ d)
+        return GoalEval(f, Jc - np.outer(up, up @ Jc), metres=math.sqrt(float(f @ f)))

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from jackpy.ik.goals.base import Chain, Context, GoalEval, SiteGoal, point3
@@ -21,7 +23,7 @@ class Position(SiteGoal):
     def evaluate(self, ctx: Context) -> GoalEval:
         r = ctx.site(self.seg, self.location)[:3, 3]
         f = r - self.target
-        return GoalEval(f, ctx.point_jacobian(self.seg, r), metres=float(np.linalg.norm(f)))
+        return GoalEval(f, ctx.point_jacobian(self.seg, r), metres=math.sqrt(float(f @ f)))
 
     def set_frame(self, frame: np.ndarray) -> None:
         """The target is the frame's origin."""

@@ -5,6 +5,8 @@ The blend weights satisfy ``w_p + w_o = 1``; ``position_weight`` is ``w_p``.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from jackpy.ik.goals.base import Chain, Context, GoalEval, SiteGoal
@@ -37,7 +39,8 @@ class PositionOrientation(SiteGoal):
         f = ((cur - self.target[:3, [3, 0, 1]].T) * weights[:, None]).reshape(9)
         J = ctx.stacked_jacobian(self.seg, cur, weights, point=True)
         deg = orientation_degrees(w, self.target, self.cx, self.cy)
-        return GoalEval(f, J, metres=float(np.linalg.norm(cur[0] - self.target[:3, 3])), degrees=deg)
+        d = cur[0] - self.target[:3, 3]
+        return GoalEval(f, J, metres=math.sqrt(float(d @ d)), degrees=deg)
 
     def set_frame(self, frame: np.ndarray) -> None:
         """The target is the frame."""
