@@ -272,12 +272,13 @@ class _Lifter:
         self.fig = figure
         h = figure_parts(figure).hands[task.hand]
         self.spine = list(figure.groups["spine"].joints)
-        self.monitor = LiftingMonitor(figure, h.segment, h.site, task.load_kg,
-                                      [f"{task.hand}_shoulder", f"{task.hand}_elbow"] + self.spine)
-        vm = self.monitor.vmap
-        self.vmap = vm
+        vm = VariableMap(figure)
         self.active = np.array(_arm_variables(vm, task.hand), dtype=int)
         self.waist = np.array(_waist_variables(vm), dtype=int)
+        self.monitor = LiftingMonitor(figure, h.segment, h.site, task.load_kg,
+                                      [f"{task.hand}_shoulder", f"{task.hand}_elbow"] + self.spine,
+                                      [int(v) for v in np.concatenate([self.active, self.waist])])
+        self.vmap = vm = self.monitor.vmap
         self.shoulder_joint = f"{task.hand}_shoulder"
         names = self.monitor.monitored_names
         self.groups = {"shoulder": [k for k, n in enumerate(names) if n.startswith(f"{task.hand}_shoulder[")],
@@ -303,8 +304,9 @@ class _Lifter:
     def feasible(self, x: np.ndarray) -> bool:
         if np.any(x < self.lower - 1e-9) or np.any(x > self.upper + 1e-9):
             return False
+        active = set(int(v) for v in self.active)
         for g, _, sl in self.vmap.group_slices:
-            if np.any(np.isin(np.arange(sl.start, sl.stop), self.active)) and not g.is_feasible(x[sl]):
+            if active.intersection(range(sl.start, sl.stop)) and not g.is_feasible(x[sl]):
                 return False
         return True
 
