@@ -79,7 +79,7 @@ def test_point_reach_describes_the_result_and_applies_the_posture(renderer):
     app.undo()
     assert np.array_equal(fig.q, q0)
     far = ap.reach_target(app, "desk.far_corner")
-    assert not far.reached and far.describe().startswith("short by ~")
+    assert not far.reached and far.describe().startswith("blocked by partition")  # collision-aware (issue 16)
 
 
 def test_visibility_names_the_occluder(renderer):

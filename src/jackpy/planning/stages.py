@@ -6,12 +6,14 @@ support polygon of the feet):
 
 1. ``arm``: the arm chain from the clavicle (torso, pelvis and feet fixed);
 2. ``torso``: the chain from the lowest spine joint (the spine bends and twists, pelvis fixed);
-3. ``pelvis``: the pelvis lowered in 5 cm steps (up to :data:`MAX_DROP`) and, as in a squat, moved
-   back by 0, 0.5 or 1 times the drop (the ankles dorsiflex only 20°, so the knees cannot go far
-   forward): a strict-priority IK keeps both feet where they stand (level 0: the knees bend), the
-   centre of mass above the middle of the feet (level 1: the spine leans to counter the hips) and
-   drives the hand with the torso and arm (level 2); then the collision-free arm search from that
-   posture. The smallest drop that reaches wins (do not squat more than needed);
+3. ``pelvis`` (knees bent, balance kept): the figure rooted at the heel of the foot on the reaching
+   side, a strict-priority IK keeps the other foot where it stands (level 0), the centre of mass
+   above the middle of the feet (level 1) and drives the hand over the whole chain from the
+   standing ankle through knee, hip and spine to the arm (level 2); then the collision-free arm
+   search from that posture. When that does not reach, the pelvis is lowered in 5 cm steps (up to
+   :data:`MAX_DROP`) and, as in a squat, moved back by 0, 0.5 or 1 times the drop (the ankles
+   dorsiflex only 20°), both feet held by the IK (level 0), the centre of mass over the feet by the
+   spine (level 1), the hand by the torso and arm (level 2); the smallest drop that reaches wins;
 4. ``step``: the whole body through the behaviors with stepping on (the current balance stepper,
    :func:`jackpy.analysis.reach.point_reach` mode ``"step"``).
 
@@ -109,6 +111,55 @@ def staged_reach(figure: Figure, target: np.ndarray, hand: str = "right", obstac
 
 
 def _pelvis_stage(figure: Figure, target: np.ndarray, hand: str, obstacles: list[Figure],
+                  target_object: str | None, tolerance: float, contact_tolerance: float | None) -> PointReach:
+    """The whole-body knee-bend IK (:func:`_knees_ik`); when that posture does not reach (or
+    passes into an object), the pelvis-drop search (:func:`_pelvis_drops`)."""
+    r = _knees_ik(figure, target, hand, obstacles, target_object, tolerance, contact_tolerance)
+    if r is not None and r.reached:
+        return r
+    drops = _pelvis_drops(figure, target, hand, obstacles, target_object, tolerance, contact_tolerance)
+    if r is not None and r.posture is not None and (drops.posture is None or r.shortfall < drops.shortfall):
+        return r
+    return drops
+
+
+def _knees_ik(figure: Figure, target: np.ndarray, hand: str, obstacles: list[Figure],
+              target_object: str | None, tolerance: float, contact_tolerance: float | None) -> PointReach | None:
+    """Rooted at the heel of the foot on the reaching side (as Jack roots a figure at the dominant
+    foot), a strict-priority IK: the other foot's heel pose (level 0: it stays where it stands),
+    the centre of mass above the middle of the feet (level 1), the hand on the target over the
+    whole chain from the standing ankle: ankle, knee, hip, spine, arm (level 2). Then the
+    collision-free arm search from that posture. None when the other foot slides or the posture
+    is not balanced."""
+    from jackpy.behaviors.anatomy import human_anatomy
+
+    h = figure_parts(figure).hands[hand]
+    feet = human_anatomy(figure).feet
+    if hand not in feet or len(feet) != 2:
+        return None
+    other = next(s for s in feet if s != hand)
+    fig = copy.deepcopy(figure)
+    heel = {s: fig.site_world(*f.heel).copy() for s, f in feet.items()}
+    middle = np.mean([heel[s][:3, 3] for s in feet] + [fig.site_world(*f.toe)[:3, 3] for f in feet.values()], axis=0)
+    fig.reroot(*feet[hand].heel)
+    ankle = f"{hand}_ankle" if f"{hand}_ankle" in fig.joints else feet[hand].joints[-2]
+    problem = ik.Problem(fig)
+    problem.add(ik.PositionOrientation(".".join(feet[other].heel), heel[other], chain=ankle), level=0)
+    problem.add(ik.CentreOfMass(middle), level=1)
+    problem.add(ik.Position(f"{h.segment}.{h.site}", target, chain=ankle), level=2)
+    ik.solve(problem, max_iterations=300, tol_position=tolerance / 5)
+    slid = float(np.linalg.norm(fig.site_world(*feet[other].heel)[:3, 3] - heel[other][:3, 3]))
+    if slid > FEET_TOLERANCE or _com_margin(fig, Posture.of(fig)) > 0.0:
+        return None
+    r = point_reach(fig, target, hand, obstacles=obstacles, target_object=target_object, tolerance=tolerance,
+                    restarts=4, contact_tolerance=contact_tolerance)
+    if r.posture is None:
+        return None
+    r.com_margin = _com_margin(fig, r.posture)
+    return r if r.com_margin <= 0.0 else None
+
+
+def _pelvis_drops(figure: Figure, target: np.ndarray, hand: str, obstacles: list[Figure],
                   target_object: str | None, tolerance: float, contact_tolerance: float | None) -> PointReach:
     from jackpy.behaviors.anatomy import human_anatomy
 

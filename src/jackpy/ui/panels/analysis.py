@@ -7,7 +7,8 @@ action functions below, which tests drive directly:
   worker thread (a copy of the figure at its current posture); the progress callback returns False
   once Cancel was pressed, so the sampling stops at the next batch. The finished envelope is shown
   translucently and the scene's sites are listed inside/outside.
-- :func:`reach_target`: point reach of a named site (``reached (2 mm)`` / ``short by ~10 cm``);
+- :func:`reach_target`: collision-aware point reach of a named site (``reached (2 mm)`` / ``blocked
+  by partition (short by ~20 cm)`` / ``short by ~10 cm``);
   :func:`apply_reach` puts the figure in the reaching posture (one undo step).
 - strength and clearance are live (:class:`~jackpy.ui.analysis_overlays.AnalysisState`).
 - :func:`measure_visibility`: visible fraction of an object or site from the eyes and its occluders,
@@ -154,8 +155,11 @@ def cancel_workspace(app: App) -> None:
 
 # ---------------------------------------------------------------------- reach, view
 def reach_target(app: App, target: str) -> PointReach:
-    """Point reach of scene site ``target`` with the chosen hand (the figure's posture is kept)."""
+    """Point reach of scene site ``target`` with the chosen hand (the figure's posture is kept),
+    collision-aware against the scene's CAD objects (issue 16: reached / reached only by touching
+    X / blocked by X / short by N cm; the hand may touch the target's own object)."""
     from jackpy.analysis import point_reach
+    from jackpy.scene.cad import CADObject
 
     fig = app.figure_of_interest()
     points = scene_targets(app.env)
@@ -163,7 +167,10 @@ def reach_target(app: App, target: str) -> PointReach:
         raise JackpyError(f"no figure or no site {target!r}")
     state = app.analysis
     state.reach_target = target
-    state.reach = point_reach(fig, points[target], state.hand)
+    objects = [f for f in app.env.figures.values() if isinstance(f, CADObject)]
+    owner = target.split(".", 1)[0]
+    state.reach = point_reach(fig, points[target], state.hand, obstacles=objects,
+                              target_object=owner if any(o.name == owner for o in objects) else None)
     app.info(f"reach {target}: {state.reach.describe()}")
     return state.reach
 
@@ -176,7 +183,10 @@ def apply_reach(app: App) -> None:
         return
 
     def act() -> None:
-        fig.q = r.q
+        if r.posture is not None:  # group angles too (the shoulder complex), so a later IK starts there
+            r.posture.apply(fig)
+        else:
+            fig.q = r.q
     app.command(f"reach {app.analysis.reach_target}", act)
 
 
