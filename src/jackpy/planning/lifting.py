@@ -393,6 +393,7 @@ class _Lifter:
         log: list[tuple[int, str]] = []
         waist_at = None
         pulling, stuck, best, best_at = False, 0, float(np.linalg.norm(task.goal - s.hand)), 0
+        pulled = False  # pull back used since the hand last gained on the goal
         reason = f"iteration limit ({task.max_iterations})"
         for it in range(1, task.max_iterations + 1):
             dist = float(np.linalg.norm(task.goal - s.hand))
@@ -419,7 +420,8 @@ class _Lifter:
                 stuck = 0 if new is not None and s.discomfort - new.discomfort > PB_MIN_GAIN else stuck + 1
                 exhausted = stuck >= PB_PATIENCE
             if dist < best - STALL_GAIN:
-                best, best_at = dist, it
+                best, best_at, pulled = dist, it, False
+            pulled = pulled or pulling
             stalled = it - best_at > STALL_STEPS
             if exhausted or stalled:
                 if task.allow_waist and waist_at is None:
@@ -429,10 +431,11 @@ class _Lifter:
                     pulling, stuck, best_at = False, 0, it
                     s = self.monitor.state(s.x, self.active)
                     continue
+                why = ("pull back and reducing moment take turns at the comfort level" if pulled
+                       else "beyond the chain's reach?")
                 reason = (f"stopped: no strategy keeps the torque ratios within the comfort level "
-                          f"(discomfort {s.discomfort:.2f}, limit {limit:.2f})" if exhausted or pulling else
-                          f"stopped: the hand came no nearer the goal in {STALL_STEPS} steps "
-                          f"(beyond the chain's reach?)")
+                          f"(discomfort {s.discomfort:.2f}, limit {limit:.2f})" if exhausted else
+                          f"stopped: the hand came no nearer the goal in {STALL_STEPS} steps ({why})")
                 break
             if new is None:
                 continue

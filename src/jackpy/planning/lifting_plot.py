@@ -159,15 +159,15 @@ def lift_plot_png(figure: Figure, results: Sequence[LiftResult], detail: int = -
         if r.waist_added_at is not None:
             side.dot(p[r.waist_added_at], c, r=5)
         how = "reached" if r.reached else "stopped"
-        items.append((f"{r.task.load_kg:g} kg, {how}" + (", +waist" if r.waist_added_at is not None else ""), c))
-    side.legend(items + [("start posture", (200, 200, 200)), (f"end, {r.task.load_kg:g} kg", (90, 90, 90))],
+        items.append((f"{r.task.load_kg:.3g} kg, {how}" + (", +waist" if r.waist_added_at is not None else ""), c))
+    side.legend(items + [("start posture", (200, 200, 200)), (f"end, {r.task.load_kg:.3g} kg", (90, 90, 90))],
                 top=False)
 
     t = r.times
     ratios = r.joint_ratios()
     top = max(1.0, max(float(v.max()) for v in ratios.values()))
     rp = Panel(draw, (PANEL_W, 0), np.array([0.0, -0.08 * top]), np.array([max(t[-1], 1e-3), top]),
-               f"Torque ratios, {r.task.load_kg:g} kg", "time (s)", "|torque| / strength")
+               f"Torque ratios, {r.task.load_kg:.3g} kg", "time (s)", "|torque| / strength")
     for name, v in ratios.items():
         rp.line(np.column_stack([t, v]), JOINT_COLOURS[name])
     rp.line(np.column_stack([np.linspace(0, t[-1], 60), np.interp(np.linspace(0, t[-1], 60), t,
@@ -189,7 +189,7 @@ def lift_plot_png(figure: Figure, results: Sequence[LiftResult], detail: int = -
                "Energy", "time (s)", "sum |torque x angle| (J)")
     for k, x in enumerate(results):
         ep.line(np.column_stack([x.times, [f.energy for f in x.frames]]), LOAD_COLOURS[k % len(LOAD_COLOURS)])
-    ep.legend([(f"{x.task.load_kg:g} kg", LOAD_COLOURS[k % len(LOAD_COLOURS)]) for k, x in enumerate(results)])
+    ep.legend([(f"{x.task.load_kg:.3g} kg", LOAD_COLOURS[k % len(LOAD_COLOURS)]) for k, x in enumerate(results)])
     buf = io.BytesIO()
     img.save(buf, format="PNG")
     return buf.getvalue()
