@@ -4,7 +4,15 @@ import numpy as np
 import pytest
 
 from jackpy.body import make_human, rescale_in_place
-from jackpy.body.skin import SPINE_SEGMENTS, bone_matrices, chain_weights, deform, skin_for, skinned_pieces
+from jackpy.body.skin import (
+    SPINE_SEGMENTS,
+    bone_matrices,
+    chain_weights,
+    deform,
+    skin_for,
+    skinned_pieces,
+    skins_for,
+)
 from jackpy.peabody.synthetic import human_like_tree
 from jackpy.render.skinning import SkinnedMesh
 
@@ -64,7 +72,7 @@ def test_rest_pose_reproduces_the_rest_mesh(human):
 def test_skin_has_the_rigid_torso_size(human):
     skin = skin_for(human)
     w = human.world_transforms()
-    rigid = np.vstack([human.segment(s).psurf.posed_mesh().vertices + w[s][:3, 3] for s in SPINE_SEGMENTS])
+    rigid = np.vstack([human.segment(s).psurf.posed_mesh().transformed(w[s]).vertices for s in SPINE_SEGMENTS])
     p = deform(skin, bone_matrices(skin, w))[0]
     assert np.allclose(p.min(axis=0), rigid.min(axis=0), atol=0.01)
     assert np.allclose(p.max(axis=0), rigid.max(axis=0), atol=0.01)
@@ -86,14 +94,14 @@ def test_bent_skin_keeps_its_volume_and_stays_closed():
     assert abs(vol[1] / vol[0] - 1.0) < 0.05  # linear blending over 17 joints loses no visible volume
 
 
-def test_pieces_reassemble_into_the_skin():
+def test_pieces_reassemble_into_the_skins():
     fig = bent(make_human("female", 5))
-    skin = skin_for(fig)
     w = fig.world_transforms()
     pieces = skinned_pieces(fig, w)
-    assert set(pieces) == set(SPINE_SEGMENTS)
-    assert sum(len(piece.faces) for piece in pieces.values()) == len(skin.faces)
-    posed = deform(skin, bone_matrices(skin, w))[0]
+    skins = skins_for(fig)
+    assert set(pieces) == set().union(*(k.covers for k in skins)) >= set(SPINE_SEGMENTS)
+    assert sum(len(piece.faces) for piece in pieces.values()) == sum(len(k.faces) for k in skins)
+    posed = np.vstack([deform(k, bone_matrices(k, w))[0] for k in skins])
     world = np.vstack([piece.vertices @ w[s][:3, :3].T + w[s][:3, 3] for s, piece in pieces.items()])
     # every piece vertex is a skin vertex (shared boundaries coincide: no seam)
     known = {tuple(p) for p in np.round(posed, 9)}
@@ -101,8 +109,23 @@ def test_pieces_reassemble_into_the_skin():
     assert len(world) > len(posed)  # boundary vertices are in both neighbouring pieces
 
 
+def test_limb_skins_follow_the_rigid_limbs():
+    fig = make_human("male", 50)
+    skins = skins_for(fig)
+    assert [k.bones[-1] for k in skins] == ["t1", "left_upper_arm", "left_thigh", "right_upper_arm", "right_thigh"]
+    w = fig.world_transforms()
+    for skin in skins[1:]:
+        edges = np.sort(skin.faces[:, [0, 1, 1, 2, 2, 0]].reshape(-1, 2), axis=1)
+        assert np.all(np.unique(edges, axis=0, return_counts=True)[1] == 2)  # closed
+        rigid = np.vstack([fig.segment(b).psurf.posed_mesh().transformed(w[b]).vertices for b in skin.bones])
+        p = deform(skin, bone_matrices(skin, w))[0]
+        assert np.allclose(p.min(axis=0), rigid.min(axis=0), atol=0.012)  # sized from the rigid surfaces
+        assert np.allclose(p.max(axis=0), rigid.max(axis=0), atol=0.012)
+        assert ((skin.weights > 0).sum(axis=1) <= 2).all() and np.allclose(skin.weights.sum(axis=1), 1.0)
+
+
 def test_only_standard_humans_have_a_skin_and_rescale_rebuilds_it():
-    assert skin_for(human_like_tree()) is None
+    assert skin_for(human_like_tree()) is None and skins_for(human_like_tree()) == ()
     fig = make_human("male", 50)
     first = skin_for(fig)
     assert skin_for(fig) is first  # cached

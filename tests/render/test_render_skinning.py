@@ -132,6 +132,7 @@ def torso_picture(renderer, fig, env, eye_offset, skinned=True):
     scene = view.build(env)
     keys = {view.mesh_key(fig.name, s) for s in SPINE_SEGMENTS}
     scene.items = [i for i in scene.items if i.mesh in keys]
+    scene.skins = [k for k in scene.skins if k.mesh == view.skin_key(fig.name, 0)]  # the torso's
     if not skinned:
         scene.skins = []  # the rigid slabs: the negative control
     scene.grid, scene.background = None, (0.0, 0.0, 0.0, 1.0)

@@ -30,6 +30,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
+from scipy import ndimage as ndi
 
 from jackpy.body.mesh_loft import superellipse_unit, tube
 from jackpy.body.shapes import SEAT_CLEARANCE, _Torso
@@ -37,15 +38,19 @@ from jackpy.body.skeleton import build_skeleton
 from jackpy.peabody.geometry import Mesh
 from jackpy.peabody.model import Figure
 
-__all__ = ["SPINE_SEGMENTS", "Skin", "SkinPiece", "bone_matrices", "build_skin", "deform", "segment_surfaces", "skin_for",
+__all__ = ["SPINE_SEGMENTS", "Skin", "SkinPiece", "bone_matrices", "build_skin", "build_skins", "deform", "segment_surfaces", "skin_for",
+           "skins_for",
            "skinned_pieces"]
 
 #: the torso's bones from the bottom up (the segments whose rigid slabs the skin replaces)
 SPINE_SEGMENTS = ("pelvis", "l5", "l4", "l3", "l2", "l1") + tuple(f"t{k}" for k in range(12, 0, -1))
-#: blend half-width across a joint as a fraction of the shorter neighbouring segment
-BLEND = 0.5
-#: points around the torso section, and the largest gap between rings (m)
-AROUND, RING_STEP = 48, 0.008
+#: the limb chains skinned on each side, bottom up (hands, feet and clavicles stay rigid)
+LIMB_CHAINS = (("forearm_distal", "forearm_mid", "forearm", "upper_arm"), ("shank", "thigh"))
+#: blend half-width across a joint as a fraction of the shorter neighbouring segment; on limbs at
+#: most LIMB_BLEND m at 1.756 m stature (a tighter elbow and knee: less linear-blend pinching)
+BLEND, LIMB_BLEND = 0.5, 0.04
+#: points around the torso and limb sections, and the largest gap between rings (m)
+AROUND, LIMB_AROUND, RING_STEP = 48, 28, 0.008
 
 
 @dataclass(frozen=True)
@@ -100,9 +105,12 @@ def chain_weights(height: np.ndarray, joints: np.ndarray, blend: np.ndarray) -> 
 
 
 def _top4(w: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """The four largest weights per row (renormalised) and their column indices."""
+    """The four largest weights per row (renormalised) and their column indices; unused slots are
+    bone 0 with weight 0."""
+    w = np.hstack([w, np.zeros((len(w), max(0, 4 - w.shape[1])))])
     idx = np.argsort(-w, axis=1, kind="stable")[:, :4]
     top = np.take_along_axis(w, idx, axis=1)
+    idx = np.where(top > 0, idx, 0)
     return idx.astype(np.int32), (top / top.sum(axis=1, keepdims=True)).astype(np.float64)
 
 
@@ -134,34 +142,112 @@ def _torso_surface(torso: _Torso, seat_y: float) -> tuple[np.ndarray, np.ndarray
     return v, mesh.faces
 
 
+def _chain_skin(bones: tuple[str, ...], v: np.ndarray, f: np.ndarray, joint_h: np.ndarray,
+                max_blend: float = np.inf) -> Skin:
+    """A skin of surface ``(v, f)`` over the vertical chain ``bones`` (bottom up) whose joints are at
+    heights ``joint_h`` (ascending); blends of BLEND times the shorter neighbour, at most ``max_blend`` m."""
+    seg_len = np.diff(np.r_[v[:, 1].min(), joint_h, v[:, 1].max()])
+    blend = np.minimum(BLEND * np.maximum(np.minimum(seg_len[:-1], seg_len[1:]), 1e-3), max_blend)
+    w = chain_weights(v[:, 1], joint_h, blend)
+    joints, weights = _top4(w)
+    return Skin(bones, v, f, _vertex_normals(v, f), joints, weights, np.argmax(w, axis=1).astype(np.int32),
+                np.zeros((len(bones), 3)))
+
+
 def build_skin(figure: Figure) -> Skin:
-    """The skin of a standard human (``figure.body_spec`` set by :func:`jackpy.body.make_human`)."""
+    """The torso skin of a standard human (``figure.body_spec`` set by :func:`jackpy.body.make_human`)."""
+    return build_skins(figure)[0]
+
+
+def build_skins(figure: Figure) -> tuple[Skin, ...]:
+    """The skins of a standard human: the torso, then each arm (upper arm and the three forearm
+    twist parts) and each leg (thigh and shank)."""
     spec = figure.body_spec  # type: ignore[attr-defined]
     sk = build_skeleton(spec, figure.name)
     org = sk.origins
     v, f = _torso_surface(_Torso(spec, sk), float(sk.points["seat_y"][1]))
-    bones = SPINE_SEGMENTS
-    joint_h = np.array([org[b][1] for b in bones[1:]])
-    seg_len = np.diff(np.r_[v[:, 1].min(), joint_h, v[:, 1].max()])
-    blend = BLEND * np.minimum(seg_len[:-1], seg_len[1:])
-    w = chain_weights(v[:, 1], joint_h, blend)
-    joints, weights = _top4(w)
-    return Skin(bones, v, f, _vertex_normals(v, f), joints, weights, np.argmax(w, axis=1).astype(np.int32),
-                np.array([org[b] for b in bones]))
+    skins = [_chain_skin(SPINE_SEGMENTS, v, f, np.array([org[b][1] for b in SPINE_SEGMENTS[1:]]))]
+    s = spec.stature / 1.756
+    for side in ("left", "right"):
+        for chain in LIMB_CHAINS:
+            bones = tuple(f"{side}_{b}" for b in chain)  # bottom up; each joint at the lower bone's origin
+            if not set(bones) <= set(figure.segments):
+                continue
+            meshes = [figure.segment(b).psurf.posed_mesh() for b in bones]
+            if any(m is None for m in meshes):
+                continue
+            lv, lf = _limb_surface([m.vertices + org[b] for m, b in zip(meshes, bones)], [m.faces for m in meshes],
+                                   org[bones[-1]][[0, 2]])
+            skins.append(_chain_skin(bones, lv, lf, np.array([org[b][1] for b in bones[:-1]]), LIMB_BLEND * s))
+    return tuple(Skin(k.bones, k.vertices, k.faces, k.normals, k.joints, k.weights, k.owner,
+                      np.array([org[b] for b in k.bones])) for k in skins)
+
+
+def _limb_surface(vertices: list[np.ndarray], faces: list[np.ndarray], axis_xz: np.ndarray
+                  ) -> tuple[np.ndarray, np.ndarray]:
+    """One closed surface around the union of a vertical chain's rigid surfaces (zero pose, m): at
+    heights RING_STEP apart, the farthest hit of LIMB_AROUND horizontal rays from the chain's axis,
+    smoothed a little along and around; closed by fans just beyond the end sections."""
+    tri = np.concatenate([v[f] for v, f in zip(vertices, faces)])
+    lo, hi = tri[..., 1].min(axis=1), tri[..., 1].max(axis=1)
+    ys = np.arange(hi.max() - 0.002, lo.min() + 0.002, -RING_STEP)
+    phi = (np.arange(LIMB_AROUND) + 0.5) * 2 * np.pi / LIMB_AROUND
+    dirs = np.column_stack([np.sin(phi), np.zeros_like(phi), np.cos(phi)])  # phi = 0 faces +z
+    radii = np.full((len(ys), LIMB_AROUND), np.nan)
+    for i, y in enumerate(ys):
+        t = tri[(lo <= y) & (hi >= y)]
+        radii[i] = _farthest_hits(np.array([axis_xz[0], y, axis_xz[1]]), dirs, t)
+    keep = np.isfinite(radii).mean(axis=1) > 0.75
+    ys, radii = ys[keep], radii[keep]
+    ang = np.r_[phi - 2 * np.pi, phi, phi + 2 * np.pi]
+    for row in radii:  # rays that missed (a notch between parts): from their neighbours around
+        ok = np.isfinite(np.r_[row, row, row])
+        row[~np.isfinite(row)] = np.interp(phi[~np.isfinite(row)], ang[ok], np.r_[row, row, row][ok])
+    radii = ndi.gaussian_filter1d(ndi.gaussian_filter1d(radii, 1.0, axis=0, mode="nearest"), 0.7, axis=1, mode="wrap")
+    centre = np.array([axis_xz[0], 0.0, axis_xz[1]])
+    rings = centre + radii[..., None] * dirs[None] + ys[:, None, None] * np.array([0.0, 1.0, 0.0])
+    r_top, r_bottom = radii[0].mean(), radii[-1].mean()
+    mesh = tube(rings, centre + [0.0, ys[0] + 0.3 * r_top, 0.0], centre + [0.0, ys[-1] - 0.3 * r_bottom, 0.0])
+    return mesh.vertices, mesh.faces
+
+
+def _farthest_hits(origin: np.ndarray, dirs: np.ndarray, tri: np.ndarray) -> np.ndarray:
+    """Per ray from ``origin`` along ``dirs`` (n,3), the distance to the farthest of triangles
+    ``tri`` (k,3,3) it hits (Moller-Trumbore), NaN where it hits none."""
+    if len(tri) == 0:
+        return np.full(len(dirs), np.nan)
+    e1, e2 = tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]
+    p = np.cross(dirs[:, None, :], e2[None])  # (n,k,3)
+    det = np.einsum("kj,nkj->nk", e1, p)
+    safe = np.where(np.abs(det) > 1e-14, det, np.inf)
+    tvec = origin - tri[:, 0]
+    u = np.einsum("kj,nkj->nk", tvec, p) / safe
+    q = np.cross(tvec, e1)
+    w = np.einsum("nj,kj->nk", dirs, q) / safe
+    t = np.einsum("kj,kj->k", e2, q)[None] / safe
+    hit = (u >= 0) & (w >= 0) & (u + w <= 1) & (t > 0) & np.isfinite(safe)
+    far = np.where(hit, t, -np.inf).max(axis=1)
+    return np.where(np.isfinite(far), far, np.nan)
 
 
 def skin_for(figure: Figure) -> Skin | None:
-    """The figure's skin (built once per body specification and cached on the figure), or ``None``
-    for a figure that is not a jackpy standard human."""
+    """The figure's torso skin, or ``None`` for a figure that is not a jackpy standard human."""
+    skins = skins_for(figure)
+    return skins[0] if skins else None
+
+
+def skins_for(figure: Figure) -> tuple[Skin, ...]:
+    """The figure's skins (:func:`build_skins`; built once per body specification and cached on the
+    figure); empty for a figure that is not a jackpy standard human."""
     spec = getattr(figure, "body_spec", None)
     if spec is None or not set(SPINE_SEGMENTS) <= set(figure.segments):
-        return None
-    cached = getattr(figure, "_jackpy_skin", None)
+        return ()
+    cached = getattr(figure, "_jackpy_skins", None)
     if cached is not None and cached[0] is spec:
         return cached[1]
-    skin = build_skin(figure)
-    figure._jackpy_skin = (spec, skin)  # type: ignore[attr-defined]
-    return skin
+    skins = build_skins(figure)
+    figure._jackpy_skins = (spec, skins)  # type: ignore[attr-defined]
+    return skins
 
 
 def bone_matrices(skin: Skin, world: np.ndarray | dict[str, np.ndarray], names: list[str] | None = None) -> np.ndarray:
@@ -189,18 +275,19 @@ def skinned_pieces(figure: Figure, world: dict[str, np.ndarray] | None = None) -
     bone, or ``None`` for a figure without a skin. A face belongs to the owner of its first vertex;
     neighbouring pieces share their boundary points and normals exactly, so drawn together (each
     with its segment's world transform) they are the continuous skin."""
-    skin = skin_for(figure)
-    if skin is None:
+    skins = skins_for(figure)
+    if not skins:
         return None
     world = figure.world_transforms() if world is None else world
-    p, n = deform(skin, bone_matrices(skin, world))
-    face_owner = skin.owner[skin.faces[:, 0]]
     out = {}
-    for b, name in enumerate(skin.bones):
-        faces = skin.faces[face_owner == b]
-        used, local = np.unique(faces, return_inverse=True)
-        inv = np.linalg.inv(world[name])
-        out[name] = SkinPiece(p[used] @ inv[:3, :3].T + inv[:3, 3], local.reshape(-1, 3), n[used] @ inv[:3, :3].T)
+    for skin in skins:
+        p, n = deform(skin, bone_matrices(skin, world))
+        face_owner = skin.owner[skin.faces[:, 0]]
+        for b, name in enumerate(skin.bones):
+            faces = skin.faces[face_owner == b]
+            used, local = np.unique(faces, return_inverse=True)
+            inv = np.linalg.inv(world[name])
+            out[name] = SkinPiece(p[used] @ inv[:3, :3].T + inv[:3, 3], local.reshape(-1, 3), n[used] @ inv[:3, :3].T)
     return out
 
 

@@ -5,8 +5,8 @@ animation, written with pygltflib (the container library; it reads the file back
   with its rest (neutral posture) translation and rotation relative to its parent;
 - one mesh: every segment's surface at rest in world coordinates, each vertex bound rigidly to its
   segment (JOINTS_0 = that segment's joint index, WEIGHTS_0 = 1), with vertex normals; a standard
-  human's torso is its continuous skin (:mod:`jackpy.body.skin`) instead, each vertex with its
-  blend of up to four vertebra joints, so viewers bend it as the workbench does;
+  human's torso, arms and legs are its continuous skins (:mod:`jackpy.body.skin`) instead, each
+  vertex with its blend of up to four joints, so viewers bend it as the workbench does;
 - one skin over all segment nodes; inverse bind matrices are the inverses of the rest world
   transforms;
 - one animation ``motion``: per node a translation and a rotation channel (LINEAR), one key per
@@ -23,7 +23,7 @@ import numpy as np
 import pygltflib as gl
 from scipy.spatial.transform import Rotation
 
-from jackpy.body.skin import bone_matrices, deform, skin_for
+from jackpy.body.skin import bone_matrices, deform, skins_for
 from jackpy.motion.bvh_export import hierarchy
 
 FLOAT, USHORT, UINT = 5126, 5123, 5125
@@ -96,19 +96,19 @@ def build_gltf(figure, baked, fps: float) -> gl.GLTF2:
     # mesh: rest surfaces in world, rigidly bound
     pos, nrm, joints, weights, faces = [], [], [], [], []
     base = 0
-    skin = skin_for(figure)
-    covered = skin.covers if skin is not None else frozenset()
     node = {seg: k for k, (seg, *_r) in enumerate(tree)}
-    if skin is not None and covered <= node.keys():  # the continuous torso, blended
+    covered: set[str] = set()
+    for skin in skins_for(figure):  # the continuous torso and limbs, blended
+        if not skin.covers <= node.keys():
+            continue
         p, n = deform(skin, bone_matrices(skin, rest))
         pos.append(p)
         nrm.append(n)
         joints.append(np.array([node[b] for b in skin.bones])[skin.joints])
         weights.append(skin.weights)
-        faces.append(skin.faces.copy())
-        base = len(p)
-    else:
-        covered = frozenset()
+        faces.append(skin.faces + base)
+        base += len(p)
+        covered |= skin.covers
     for k, (seg, *_r) in enumerate(tree):
         if seg in covered:
             continue

@@ -19,7 +19,7 @@ import numpy as np
 
 from jackpy.peabody import Environment, Figure, Segment
 from jackpy.scene.cad import CADObject
-from jackpy.body.skin import bone_matrices, skin_for
+from jackpy.body.skin import bone_matrices, skins_for
 from jackpy.render import DrawItem, GoalMarker, Lines, Scene, SkinnedItem, SkinnedMesh, Spheres, Sticks, Triad
 from jackpy.render.mesh import Mesh as RenderMesh
 
@@ -146,8 +146,8 @@ class SceneView:
     def mesh_key(self, figure: str, segment: str) -> str:
         return f"fig:{figure}/{segment}"
 
-    def skin_key(self, figure: str) -> str:
-        return f"skin:{figure}"
+    def skin_key(self, figure: str, index: int) -> str:
+        return f"skin:{figure}/{index}"
 
     def upload(self, renderer: "Renderer", env: Environment) -> None:
         """Upload every segment mesh that the renderer lacks or whose geometry changed.
@@ -164,11 +164,11 @@ class SceneView:
                     continue
                 renderer.add_mesh(key, segment_mesh(seg, fig, budget if cad else None), replace=True)
                 self._geometry[key] = gkey
-            skin = None if cad else skin_for(fig)  # a standard human's continuous torso
-            key = self.skin_key(fig.name)
-            if skin is not None and (self._geometry.get(key) is not skin or not renderer.has_mesh(key)):
-                renderer.add_skinned_mesh(key, SkinnedMesh.of(skin), replace=True)
-                self._geometry[key] = skin
+            for k, skin in enumerate(() if cad else skins_for(fig)):  # a standard human's torso and limbs
+                key = self.skin_key(fig.name, k)
+                if self._geometry.get(key) is not skin or not renderer.has_mesh(key):
+                    renderer.add_skinned_mesh(key, SkinnedMesh.of(skin), replace=True)
+                    self._geometry[key] = skin
 
     # ------------------------------------------------------------------ scene
     def build(self, env: Environment, goals: Sequence[GoalView] = (), skeleton: bool = False,
@@ -194,9 +194,9 @@ class SceneView:
                     self.mesh_key(fig.name, name), fk.segments[i], color,
                     pick_id=self.segment_pick_id(fig.name, name), transparent=cad,
                     highlighted=hl_fig and (is_object(fig) or highlight.segment == name)))
-            skin = None if cad else skin_for(fig)
-            if skin is not None:  # stands in for its bones' items (their colour, pick id, highlight)
-                scene.skins.append(SkinnedItem(self.skin_key(fig.name), bone_matrices(skin, fk.segments, kin.segment_names),
+            for k, skin in enumerate(() if cad else skins_for(fig)):  # each stands in for its bones' items
+                scene.skins.append(SkinnedItem(self.skin_key(fig.name, k), bone_matrices(skin, fk.segments,
+                                                                                         kin.segment_names),
                                                bone_items=[self.mesh_key(fig.name, b) for b in skin.bones]))
         for k, g in enumerate(goals):
             pid = GOAL_PICK_BASE + k
