@@ -31,7 +31,9 @@ def test_window_draws_view_and_panels(request):
         app.select(SegmentPick(fig.name, "right_forearm"))
         for name in ("Figure", "Behaviors", "Devices"):  # every panel of the workbench draws
             win.ui.open_panels[name] = True
-        win.ui.prompt = "import"  # the Import CAD dialog with its units and up axis
+        from jackpy.ui.commands import file_request
+
+        win.ui.files.ask(file_request(app, win.ui, "import"))  # the Import CAD browser with units and up axis
         for _ in range(3):
             win.frame()
         pixels = np.frombuffer(win.ctx.screen.read(components=3), np.uint8).reshape(640, 900, 3)

@@ -39,6 +39,7 @@ from jackpy.peabody import Environment, Figure
 from jackpy.ui.analysis_overlays import AnalysisState
 from jackpy.ui.camera import NavAction, OrbitCamera, navigation_action
 from jackpy.ui.manipulator import Manipulator
+from jackpy.ui.preferences import Preferences
 from jackpy.ui.scene_view import GoalPick, Overlay, SceneView, SegmentPick, is_object
 
 if TYPE_CHECKING:
@@ -173,7 +174,11 @@ class App:
         self.driving = False
         """While True every frame runs one sensor-drive frame (the sensors move the figure)."""
         self._last_step = time.monotonic()
+        self.preferences = Preferences.load()
+        """The user's preferences ($JACKPY_HOME/preferences.json): mouse preset, dialogs, recent files."""
         self.set_document(doc if doc is not None else Document(env, settings))
+        if self.preferences.problem:
+            self.info(self.preferences.problem)
 
     # ------------------------------------------------------------------ document
     def set_document(self, doc: Document) -> None:
@@ -185,6 +190,7 @@ class App:
         self.view = SceneView()
         self.manipulator.attach(None)
         self.manipulator.literal = doc.settings.literal_grab
+        doc.settings.mouse_mapping = self.preferences.mouse_preset  # the user's, whatever the file said
         self.selection = None
         cam = doc.view_state.get("camera")
         if cam is not None:
@@ -414,6 +420,15 @@ class App:
     def _begin_press(self, button: int) -> None:
         x, y = self._cursor
         control = bool(self._mods & MOD_CONTROL)
+        mods = {"shift"} if self._mods & MOD_SHIFT else set()
+        if self._mods & MOD_CONTROL:
+            mods.add("ctrl")
+        if self._mods & MOD_ALT:
+            mods.add("alt")
+        nav = navigation_action(self.settings.mouse_mapping, _BUTTON_NAMES[button], mods)
+        if nav is not None and "alt" in mods:  # Maya's Alt-drags navigate, also over a figure
+            self._nav = nav
+            return
         hit = self.pick(x, y)
         target = hit if hit is not None else (self.selection if self.manipulation_mode else None)
         before = self.capture()
@@ -427,10 +442,7 @@ class App:
             self.doc.take_changed()
             self._update_operator()
             return
-        mods = {"shift"} if self._mods & MOD_SHIFT else set()
-        if self._mods & MOD_CONTROL:
-            mods.add("ctrl")
-        self._nav = navigation_action(self.settings.mouse_mapping, _BUTTON_NAMES[button], mods)
+        self._nav = nav
 
     @staticmethod
     def _label_of(manipulator: Manipulator) -> str:

@@ -203,8 +203,15 @@ MOUSE_MAPPINGS: dict[str, tuple[MouseBinding, ...]] = {
         _binding("middle", NavAction.PAN, "shift"),
         _binding("middle", NavAction.ZOOM, "ctrl"),
     ),
+    # Maya: Alt-left tumble, Alt-middle track, Alt-right dolly
+    "maya": (
+        _binding("left", NavAction.ORBIT, "alt"),
+        _binding("middle", NavAction.PAN, "alt"),
+        _binding("right", NavAction.ZOOM, "alt"),
+    ),
 }
-"""Named navigation presets; the mouse wheel zooms in every preset."""
+"""Named navigation presets; the mouse wheel zooms in every preset. A binding with ``alt`` moves the
+camera even when the press is on a pickable thing (Alt is none of the Jack operator's modifiers)."""
 
 
 def navigation_action(mapping: str, button: Button, modifiers: frozenset[str] | set[str] = frozenset()

@@ -33,16 +33,30 @@ if TYPE_CHECKING:
 def save_session(app: App, path: str | os.PathLike[str], *, remember: bool = True) -> Path:
     """Write the document (with the camera) to ``path`` (``.env``) atomically."""
     app.store_view()
-    if remember:
-        return app.doc.save(path)
-    return doc_session.save(app.doc, path)
+    if not remember:
+        return doc_session.save(app.doc, path)
+    written = app.doc.save(path)
+    _remember_recent(app, written)
+    return written
 
 
-def open_session(app: App, path: str | os.PathLike[str]) -> None:
-    """Replace the app's document with the one saved at ``path``."""
+def open_session(app: App, path: str | os.PathLike[str], *, remember: bool = True) -> None:
+    """Replace the app's document with the one saved at ``path`` (``remember``: it goes first
+    in File → Open Recent)."""
     doc = Document.open(path)
     doc.log[:0] = app.log
     app.set_document(doc)
+    if remember:
+        _remember_recent(app, Path(path))
+
+
+def _remember_recent(app: App, path: Path) -> None:
+    """Put ``path`` first in the user's recent files; a preferences file that cannot be written
+    is a warning, never a failed save or open."""
+    try:
+        app.preferences.add_recent(path)
+    except OSError as exc:
+        app.info(f"warning: recent files not saved ({exc})")
 
 
 def new_scene(app: App) -> None:
@@ -98,7 +112,7 @@ def recovery_offer(scene: str | os.PathLike[str] | None) -> Path | None:
 def recover(app: App, path: Path) -> None:
     """Open the recovery file as an unsaved scene (of the file it autosaved, if any), then delete it."""
     of = recovery_scene(path)
-    open_session(app, path)
+    open_session(app, path, remember=False)
     app.doc.view_state.pop("autosave_of", None)
     app.doc.path = of
     app.doc.dirty = True

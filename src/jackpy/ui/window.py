@@ -25,14 +25,14 @@ import moderngl
 from imgui_bundle import imgui
 
 from jackpy.errors import JackpyError
-from jackpy.ui.app import App, KEY_ESCAPE, MOD_CONTROL, PRESS
+from jackpy.ui.app import App, KEY_ESCAPE, MOD_CONTROL, MOD_SHIFT, PRESS
 from jackpy.ui.gizmo import Gizmo
 from jackpy.ui.layout import Layout, Rect
 from jackpy.ui.panels import UiState, draw_all, panels
 from jackpy.ui.status import FrameRate, Notifications, draw_status_bar
 from jackpy.render import Renderer
 
-KEY_O, KEY_Q, KEY_S, KEY_T, KEY_R = ord("O"), ord("Q"), ord("S"), ord("T"), ord("R")
+KEY_O, KEY_Q, KEY_S, KEY_T, KEY_R, KEY_P = ord("O"), ord("Q"), ord("S"), ord("T"), ord("R"), ord("P")
 IDLE_AFTER_FRAMES = 3
 """Quiet frames (ImGui settles hover and layout in one or two) before the loop sleeps."""
 IDLE_WAIT_S = 0.25
@@ -87,6 +87,12 @@ class Window:
         self._closed = False
         self._title = title
         self._quiet = 0  # frames since the last input or activity
+        self.after_swap: list[Callable[[], None]] = []
+        """Called after each frame's swap (the test engine's PostSwap)."""
+        self.new_frame: Callable[[], None] = imgui.new_frame
+        self.end_frame: Callable[[], None] = imgui.end_frame
+        """ImGui's NewFrame and EndFrame; :class:`jackpy.ui.gui_driver.GuiDriver` swaps in calls
+        that release the GIL, so that imgui's test engine can run its Python tests on its thread."""
         # keep references: glfw holds only C pointers to these
         self._callbacks = (self.cursor_pos_callback, self.mouse_button_callback, self.scroll_callback,
                            self.key_callback, self.char_callback, self.framebuffer_size_callback)
@@ -109,11 +115,11 @@ class Window:
         view drawn, nothing shown (layout settling; tests that sweep the mouse over widgets)."""
         imgui.backends.opengl3_new_frame()
         imgui.backends.glfw_new_frame()
-        imgui.new_frame()
+        self.new_frame()
         draw_all(self.app, self.ui, self._chrome)
         if extra is not None:
             extra()
-        imgui.end_frame()
+        self.end_frame()
 
     # ------------------------------------------------------------------ glfw callbacks
     def _scale(self) -> tuple[float, float]:
@@ -158,8 +164,10 @@ class Window:
         imgui.backends.glfw_key_callback(self._addr, key, scancode, action, mods)
         if imgui.get_io().want_text_input and key != KEY_ESCAPE:
             return  # typing in a text field; anywhere else the shortcuts work (a panel has the focus)
-        if action == PRESS and mods & MOD_CONTROL and key in (KEY_O, KEY_S, KEY_Q):
-            self._shortcut(key)
+        if self.ui.files.active or self.ui.confirm is not None:
+            return  # a file dialog or prompt is open: its buttons answer, not the shortcuts
+        if action == PRESS and mods & MOD_CONTROL and key in (KEY_O, KEY_S, KEY_Q, KEY_P):
+            self._shortcut(key, bool(mods & MOD_SHIFT))
             return
         if action == PRESS and not mods and key in (KEY_T, KEY_R):
             self.gizmo.rotate = key == KEY_R
@@ -173,19 +181,19 @@ class Window:
     def framebuffer_size_callback(self, window: object, width: int, height: int) -> None:
         self._quiet = 0  # the next frame sizes the 3-D view to the dock's central node
 
-    def _shortcut(self, key: int) -> None:
-        from jackpy.ui import session
+    def _shortcut(self, key: int, shift: bool = False) -> None:
+        from jackpy.ui import commands
 
         if key == KEY_Q:
             self.ui.quit_requested = True
         elif key == KEY_O:
-            self.ui.prompt, self.ui.prompt_text = "open", ""
-        elif self.app.session_path is not None:
-            session.save_session(self.app, self.app.session_path)
+            commands.ask_file(self.app, self.ui, "open")
+        elif key == KEY_P:
+            self.ui.palette_open = shift or self.ui.palette_open
+        elif shift:
+            commands.ask_file(self.app, self.ui, "save_as")
         else:
-            from jackpy.ui.panels.menu_bar import default_save_path
-
-            self.ui.prompt, self.ui.prompt_text = "save_as", default_save_path(self.app)
+            commands.save(self.app, self.ui)
 
     # ------------------------------------------------------------------ loop
     def frame(self) -> None:
@@ -193,13 +201,14 @@ class Window:
         glfw.poll_events()
         imgui.backends.opengl3_new_frame()
         imgui.backends.glfw_new_frame()
-        imgui.new_frame()
+        self.new_frame()
         self.rate.tick()
         draw_all(self.app, self.ui, self._chrome)
         self.notifications.draw(self.view_rect)
         fw, fh = glfw.get_framebuffer_size(self.handle)
         r = self.view_rect
         self.gizmo.draw(self.app, r.w, r.h, r.x, r.y)
+        self.end_frame()
         imgui.render()
         drawn = self.app.renderer.frames_drawn if self.app.renderer is not None else 0
         self.ctx.screen.use()
@@ -212,6 +221,8 @@ class Window:
         imgui.backends.opengl3_render_draw_data(imgui.get_draw_data())
         self.update_title()
         glfw.swap_buffers(self.handle)
+        for hook in self.after_swap:
+            hook()
         busy = self.app.needs_solve or self.app.driving or (
             self.app.renderer is not None and self.app.renderer.frames_drawn != drawn)
         self._quiet = 0 if busy else self._quiet + 1

@@ -15,6 +15,9 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
+from jackpy.ui.file_dialog import FileDialog
+from jackpy.ui.palette import CommandPalette
+
 if TYPE_CHECKING:
     from jackpy.ui.app import App
 
@@ -55,13 +58,16 @@ def panels() -> list[Panel]:
 
 @dataclass
 class UiState:
-    """Window-level UI state: which panels are open, each panel's widget state, the pending prompt."""
+    """Window-level UI state: which panels are open, each panel's widget state, the file dialog,
+    the command palette, the pending prompts."""
 
     open_panels: dict[str, bool] = field(default_factory=lambda: {p.title: p.open for p in panels()})
     panel_states: dict[str, dict[str, Any]] = field(default_factory=dict)
-    prompt: str | None = None
-    """Which path prompt is open: ``"open"``, ``"save_as"``, ``"import"``, ``"screenshot"``."""
-    prompt_text: str = ""
+    files: FileDialog = field(default_factory=FileDialog)
+    """The file dialog (open, save as, import, screenshot); at most one question at a time."""
+    palette: CommandPalette = field(default_factory=CommandPalette)
+    palette_open: bool = False
+    """The command palette is shown (Ctrl+Shift+P, Help → Command palette)."""
     quit_requested: bool = False
     quit_confirmed: bool = False
     """Set by Discard (or a save) in the quit prompt: the next quit ends without asking."""
