@@ -46,6 +46,11 @@ CREEP, CREEP_STEP = 1e-9, 1e-8
 #: damping of the bounded Gauss-Newton step: ``lambda = GN_DAMPING_FLOOR + GN_DAMPING * |F|`` (scaled units)
 GN_DAMPING, GN_DAMPING_FLOOR = 0.01, 1e-4
 _EMPTY = np.zeros(0)
+#: forward passes one iteration may spend on average (line-search trials and, with priority levels,
+#: their restoration steps): a solve starts at most ``2 + EVALUATIONS_PER_ITERATION * max_iterations``
+#: evaluations (the start and an arm seed), so ``max_iterations`` bounds its cost; when they are
+#: spent it returns its last accepted (best feasible) iterate with status ``"iteration_limit"``
+EVALUATIONS_PER_ITERATION = 4
 
 try:  # numpy.linalg.inv's own kernel, without its per-call checks (the matrix is positive definite)
     from numpy.linalg import _umath_linalg
@@ -76,6 +81,7 @@ def solve(problem: Problem, *, max_iterations: int = 100, tol_position: float = 
         raise ValueError(f"step must be 'bounded' or 'bfgs', not {step!r}")
     comp = problem.compile()
     run = _Run(comp, tol_position, tol_angle, tol_step)
+    run.max_evaluations = 2 + EVALUATIONS_PER_ITERATION * max(int(max_iterations), 0)
     if time_budget_s is not None:
         run.deadline = run.started + max(0.0, float(time_budget_s))
     result = None
@@ -132,6 +138,7 @@ class _Run:
         self.evaluations = 0
         self.started = time.perf_counter()
         self.deadline = math.inf
+        self.max_evaluations = math.inf
 
     # ----- helpers ----------------------------------------------------------------------------------
     def _feasible(self, z: np.ndarray) -> np.ndarray:
@@ -158,8 +165,14 @@ class _Run:
         return y
 
     def expired(self) -> bool:
-        """True once the time budget has passed (then no further evaluation is started)."""
-        return self.deadline != math.inf and time.perf_counter() >= self.deadline
+        """True once the time budget has passed or the evaluations are spent (then no further
+        evaluation is started)."""
+        return self.evaluations >= self.max_evaluations or (
+            self.deadline != math.inf and time.perf_counter() >= self.deadline)
+
+    def stop_status(self) -> str:
+        """Why :meth:`expired`: the time box, else the evaluation budget (part of the iteration cap)."""
+        return ITERATION_LIMIT if self.evaluations >= self.max_evaluations else TIME_LIMIT
 
     def evaluate(self, z: np.ndarray) -> Evaluation:
         self.evaluations += 1
@@ -220,7 +233,7 @@ class _Run:
             if self.achieved(ev, level):
                 return ev, ACHIEVED
             if self.expired():
-                return ev, TIME_LIMIT
+                return ev, self.stop_status()
             free = ~fixed
             N = manifold.tangent_rows(ev, free) if manifold else no_rows
             C = np.vstack([self.A[rows] * free, N]) if rows else N
@@ -269,7 +282,7 @@ class _Run:
             self.iterations += 1
             if new is None:
                 if self.expired():
-                    return ev, TIME_LIMIT
+                    return ev, self.stop_status()
                 if not metric.pairs:
                     return ev, "stationary"
                 metric.clear()
@@ -317,7 +330,7 @@ class _Run:
             if self.achieved(ev, level):
                 return ev, ACHIEVED
             if self.expired():
-                return ev, TIME_LIMIT
+                return ev, self.stop_status()
             lam = (GN_DAMPING_FLOOR + GN_DAMPING * math.sqrt(G)) * boost
             c = J.T @ F
             d, held, _ = bounded_step(J, lam, c, self.lo - z, self.hi - z, self.A if rows else None,
@@ -332,7 +345,7 @@ class _Run:
             self.iterations += 1
             if new is None:
                 if self.expired():
-                    return ev, TIME_LIMIT
+                    return ev, self.stop_status()
                 if boost >= 1e6:
                     return ev, "stationary"
                 boost *= 10.0
