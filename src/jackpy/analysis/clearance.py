@@ -181,6 +181,45 @@ def _world_boxes(boxes: np.ndarray, t: np.ndarray) -> np.ndarray:
     return np.stack([c - h, c + h], axis=1)
 
 
+@dataclass
+class _Shape:
+    """A segment's collision shape: its (eroded) ``mesh``, bounding sphere and fcl BVH, and its
+    triangle refinement for the clearance bounds (on first use)."""
+
+    mesh: Mesh
+    centre: np.ndarray
+    radius: float
+    bvh: object
+    _refinement: tuple | None = None
+
+    def refinement(self) -> tuple:
+        if self._refinement is None:
+            self._refinement = _refinement(self.mesh, _BOUND_SPACING)
+        return self._refinement
+
+
+#: segment shapes by mesh content and erosion: a figure's copies, and every checker made for the
+#: same figure, share them (building the BVHs was most of a checker's cost)
+_SHAPES: dict[tuple[bytes, float], _Shape] = {}
+_SHAPES_MAX = 4096
+
+
+def _shape(mesh: Mesh, erode: float) -> _Shape:
+    import hashlib
+
+    v = np.ascontiguousarray(mesh.vertices, dtype=np.float64)
+    f = np.ascontiguousarray(mesh.faces, dtype=np.int64)
+    key = (hashlib.blake2b(v.tobytes() + f.tobytes(), digest_size=16).digest(), float(erode))
+    shape = _SHAPES.get(key)
+    if shape is None:
+        m = eroded(mesh, erode)
+        c, r = _sphere(m)
+        if len(_SHAPES) >= _SHAPES_MAX:
+            _SHAPES.clear()
+        shape = _SHAPES[key] = _Shape(m, c, r, _bvh(m))
+    return shape
+
+
 def _sphere(mesh: Mesh) -> tuple[np.ndarray, float]:
     lo, hi = mesh.bounds()
     c = (lo + hi) / 2
@@ -208,37 +247,28 @@ class ClearanceChecker:
         seg_idx, centres, radii, self._seg_obj = [], [], [], []
         self.segment_names: list[str] = []
         verts, faces, vstart, fstart = [], [], [0], [0]
-        cover, xpts, xcount, xr = [], [], [], []
+        self._shapes: list[_Shape] = []
         for name in kin.segment_names:
             seg = figure.segments[name]
             mesh = seg.psurf.posed_mesh() if seg.psurf is not None and (segments is None or name in segments) else None
             if mesh is None or len(mesh.faces) == 0:
                 continue
-            mesh = eroded(mesh, erode)
-            c, r = _sphere(mesh)
+            shape = _shape(mesh, erode)
+            mesh = shape.mesh
+            self._shapes.append(shape)
             seg_idx.append(kin.segment_index[name])
-            centres.append(c)
-            radii.append(r)
-            self._seg_obj.append(fcl.CollisionObject(_bvh(mesh), fcl.Transform()))
+            centres.append(shape.centre)
+            radii.append(shape.radius)
+            self._seg_obj.append(fcl.CollisionObject(shape.bvh, fcl.Transform()))
             self.segment_names.append(name)
             verts.append(np.asarray(mesh.vertices, dtype=float))
             faces.append(np.asarray(mesh.faces, dtype=np.int64) + vstart[-1])
-            r, extra, count, fine = _refinement(mesh, _BOUND_SPACING)
-            cover.append(r)
-            xpts.append(extra)
-            xcount.append(count)
-            xr.append(fine)
             vstart.append(vstart[-1] + len(mesh.vertices))
             fstart.append(fstart[-1] + len(mesh.faces))
         # all segments' vertices and triangles, concatenated (segment frames), for the grid bounds
         self._verts = np.vstack(verts) if verts else np.zeros((0, 3))
         self._faces = np.vstack(faces) if faces else np.zeros((0, 3), dtype=np.int64)
-        # per triangle: its cover radius (every point within it of a vertex) and, for large ones,
-        # extra points _xpts[_xptr[f]:_xptr[f + 1]] (segment frame) with a finer radius _xr[f]
-        self._cover = np.concatenate(cover) if cover else np.zeros(0)
-        self._xpts = np.vstack(xpts) if xpts else np.zeros((0, 3))
-        self._xptr = np.r_[0, np.cumsum(np.concatenate(xcount))] if xcount else np.zeros(1, dtype=np.int64)
-        self._xr = np.concatenate(xr) if xr else np.zeros(0)
+        self._refined = False  # the triangle refinement: made on the first clearance query
         self._vstart = np.array(vstart, dtype=np.int64)
         self._fstart = np.array(fstart, dtype=np.int64)
         self._fseg = np.repeat(np.arange(len(verts)), np.diff(self._fstart)) if verts else np.zeros(0, dtype=int)
@@ -456,11 +486,25 @@ class ClearanceChecker:
         parts = [cache[int(k)] for k in segs]
         return np.concatenate([c[1] for c in parts]), np.concatenate([c[2] for c in parts])
 
+    def _refinement_arrays(self) -> None:
+        """Per triangle: its cover radius ``_cover`` (every point within it of a vertex) and, for
+        large ones, extra points ``_xpts[_xptr[f]:_xptr[f + 1]]`` (segment frame) with a finer
+        radius ``_xr[f]`` (built once, for clearance only: collision queries never need them)."""
+        if self._refined:
+            return
+        parts = [sh.refinement() for sh in self._shapes]
+        self._cover = np.concatenate([p[0] for p in parts]) if parts else np.zeros(0)
+        self._xpts = np.vstack([p[1] for p in parts]) if parts else np.zeros((0, 3))
+        self._xptr = np.r_[0, np.cumsum(np.concatenate([p[2] for p in parts]))] if parts else np.zeros(1, dtype=np.int64)
+        self._xr = np.concatenate([p[3] for p in parts]) if parts else np.zeros(0)
+        self._refined = True
+
     def _triangle_level(self, segs: np.ndarray, b: int) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
         """For segments ``segs`` against body ``b``: the segments' triangle indices (into the
         concatenated arrays), a lower bound per triangle (its vertices' smallest grid bound minus the
         triangle's cover radius), and per segment the lower bound (smallest of its triangles') and
         upper bound (smallest of its vertices' grid upper bounds)."""
+        self._refinement_arrays()
         vlo, vhi = self._vertex_bounds(segs, b)
         counts = self._vstart[segs + 1] - self._vstart[segs]
         vidx = _ranges(self._vstart[segs], self._vstart[segs + 1])

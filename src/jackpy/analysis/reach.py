@@ -77,7 +77,8 @@ class Posture:
     def apply(self, figure: Figure, root: tuple[str, str] | None = None) -> None:
         """Put ``figure`` (the figure this posture was taken from, or a copy of it) in this posture;
         with ``root`` re-root it there afterwards (world transforms kept)."""
-        figure.reroot(*self.root)
+        if tuple(figure.root) != tuple(self.root):  # re-rooting rebuilds the figure's kinematics
+            figure.reroot(*self.root)
         figure.location = self.location.copy()
         figure.q = self.q.copy()
         for n, a in self.group_angles.items():
