@@ -107,3 +107,27 @@ def test_cli_output_that_is_a_file_is_refused(tmp_path: Path, capsys) -> None:
 def test_task_needs_finite_goal() -> None:
     with pytest.raises(ValueError):
         LiftTask(1.0, [0.0, np.inf, 0.0])
+
+
+EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "workplace" / "workplace.json"
+
+
+def test_cli_lifts_to_a_site_of_a_scene(tmp_path: Path, capsys) -> None:
+    from jackpy.scene.workplace import load_workplace, resolve_target
+
+    rc = main(["lift", str(EXAMPLE), "--load", "3", "--to", "shelf.box_handle", "--compare", "-o", str(tmp_path)])
+    assert rc == 0, capsys.readouterr()
+    summary = json.loads((tmp_path / "lift.json").read_text())
+    target = resolve_target(load_workplace(EXAMPLE).env, "shelf.box_handle")[1]
+    np.testing.assert_allclose(summary["task"]["goal_m"], target)
+    assert np.linalg.norm(np.array(summary["series"]["hand_m"][-1]) - target) <= 0.01
+
+
+@pytest.mark.parametrize("argv, contains", [(["{scene}", "--to", "shelf.nothing"], "no site"),
+                                            (["--to", "shelf.box_handle"], "give the SCENE"),
+                                            (["{d}/missing.json"], "no such scene")])
+def test_cli_scene_errors_are_one_line(tmp_path: Path, capsys, argv, contains) -> None:
+    argv = [a.format(scene=EXAMPLE, d=tmp_path) for a in argv]
+    assert main(["lift", *argv, "--load", "3", "-o", str(tmp_path / "o")]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and contains in err[0]

@@ -1,5 +1,6 @@
-"""``jackpy lift --load KG [--goal X Y Z] [--start X Y Z] [--comfort CL] [--exertion PE] -o OUT/``:
-strength-guided lifting (book §5.3) by a standard human standing at the origin facing +z; writes
+"""``jackpy lift [SCENE] --load KG [--goal X Y Z | --to OBJ.SITE] [--start X Y Z | --from OBJ.SITE]
+[--comfort CL] [--exertion PE] -o OUT/``: strength-guided lifting (book §5.3) by a standard human
+standing at the scene's stand (without a scene: at the origin facing +z); writes
 ``lift.json`` (summary and per-step series), ``lift.png`` (hand paths of the load and the
 ``--compare`` loads, torque ratios, energy) and ``lift.motion.json`` (the baked lift).
 Exit status 0 when the load reached the goal, 1 when the lift stopped short. See docs/lifting.md."""
@@ -57,13 +58,27 @@ def _fps(text: str) -> float:
     return v
 
 
+def _site(env, ref: str) -> np.ndarray:
+    from jackpy.scene.workplace import resolve_target
+
+    return np.asarray(resolve_target(env, ref)[1], dtype=float)
+
+
 def register(subparsers) -> None:
     p = subparsers.add_parser("lift", help="strength-guided lifting of a load to a goal (book 5.3)")
+    p.add_argument("scene", metavar="SCENE", nargs="?", default=None,
+                   help="workplace scene (JSON): the figure stands at its stand; --from/--to name its sites")
     p.add_argument("--load", type=_mass, required=True, metavar="KG", help="mass held in the hand: 10, 10kg or 22lb")
-    p.add_argument("--goal", type=_coordinate, nargs=3, metavar=("X", "Y", "Z"), default=None,
-                   help="where the load goes (world m, y up; default: above the head, 30 cm in front)")
-    p.add_argument("--start", type=_coordinate, nargs=3, metavar=("X", "Y", "Z"), default=None,
-                   help="where the hand holds the load first (world m; default: in front of the chest)")
+    goal = p.add_mutually_exclusive_group()
+    goal.add_argument("--goal", type=_coordinate, nargs=3, metavar=("X", "Y", "Z"), default=None,
+                      help="where the load goes (world m, y up; default: above the head, 30 cm in front)")
+    goal.add_argument("--to", dest="to_site", metavar="OBJ.SITE", default=None,
+                      help="where the load goes: a site of the scene (object.site or object)")
+    start = p.add_mutually_exclusive_group()
+    start.add_argument("--start", type=_coordinate, nargs=3, metavar=("X", "Y", "Z"), default=None,
+                       help="where the hand holds the load first (world m; default: in front of the chest)")
+    start.add_argument("--from", dest="from_site", metavar="OBJ.SITE", default=None,
+                       help="where the hand holds the load first: a site of the scene")
     p.add_argument("--comfort", type=_fraction(True), default=0.5, metavar="CL",
                    help="largest torque / strength ratio the lifter accepts, (0, 1] (default 0.5)")
     p.add_argument("--exertion", type=_fraction(False), default=0.3, metavar="PE",
@@ -81,14 +96,28 @@ def register(subparsers) -> None:
 
 def run(args) -> int:
     from jackpy.atomic import atomic_write_bytes, atomic_write_text
+    from jackpy.errors import SessionError
     from jackpy.motion import cast, motion_file
     from jackpy.planning.lifting import DEFAULT_GOAL, DEFAULT_START, LiftTask, figure_offset, strength_guided_lift
     from jackpy.planning.lifting_motion import lift_motion
     from jackpy.planning.lifting_plot import lift_plot_png
 
-    fig = cast.make_figure("lifter", {"human": args.figure})
-    goal = np.array(args.goal) if args.goal is not None else figure_offset(fig, DEFAULT_GOAL, args.hand)
-    start = np.array(args.start) if args.start is not None else figure_offset(fig, DEFAULT_START, args.hand)
+    spec = {"human": args.figure}
+    env = None
+    if args.scene is not None:
+        from jackpy.scene.workplace import load_workplace
+
+        wp = load_workplace(args.scene)
+        env = wp.env
+        spec |= {"position": [float(wp.stand.position[0]), float(wp.stand.position[1])],
+                 "heading_deg": float(np.degrees(wp.stand.heading))}
+    elif args.to_site or args.from_site:
+        raise SessionError("--from and --to name sites of a scene: give the SCENE file first")
+    fig = cast.make_figure("lifter", spec)
+    goal = (np.array(args.goal) if args.goal is not None else _site(env, args.to_site) if args.to_site
+            else figure_offset(fig, DEFAULT_GOAL, args.hand))
+    start = (np.array(args.start) if args.start is not None else _site(env, args.from_site) if args.from_site
+             else figure_offset(fig, DEFAULT_START, args.hand))
     out = Path(args.output)
     if out.exists() and not out.is_dir():
         raise NotADirectoryError(f"{out}: the output must be a folder")
