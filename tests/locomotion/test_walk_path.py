@@ -98,3 +98,29 @@ def test_turn_in_place_steps_at_most_45():
     assert steps[-1].psi == pytest.approx(np.radians(120.0))
     for a, b in zip(steps[1:], steps[2:]):
         assert abs(b.psi - a.psi) <= np.radians(45.0) + 1e-9
+
+
+def test_banking_leans_into_the_turn_by_eq_5_13():
+    """φ = arctan(κ v²/g): on the quarter circle (r = 2 m, a left turn) the centre site moves
+    toward the centre by H·tan φ against the unbanked walk; on a straight path φ = 0."""
+    import dataclasses
+
+    from jackpy.locomotion.walk_gait import GRAVITY
+
+    _, p = figure_and_params("male:50")
+    a = np.linspace(0.0, np.pi / 2, 9)
+    steps = footsteps.from_path(p, np.column_stack([2.0 - 2.0 * np.cos(a), 2.0 * np.sin(a)]), facing=np.pi / 2)
+    banked, flat = walk_path.Walk(steps, p), walk_path.Walk(steps, dataclasses.replace(p, banking=False))
+    centre = np.array([2.0, 0.0])
+    for j in range(4, len(steps) - 3):  # the steady turning steps
+        t, dt = 0.5 * (banked.land[j - 1] + banked.land[j]), 0.01
+        c0 = flat.at(t).pelvis[[0, 2], 3]
+        v = np.linalg.norm(flat.at(t + dt).pelvis[[0, 2], 3] - flat.at(t - dt).pelvis[[0, 2], 3]) / (2 * dt)
+        r = np.linalg.norm(c0 - centre)
+        shift = banked.at(t).pelvis[[0, 2], 3] - c0
+        inward = float(np.dot(shift, (centre - c0) / r))
+        assert inward > 0.0 and np.linalg.norm(shift) == pytest.approx(inward, rel=0.05)
+        phi = np.arctan(inward / p.hip_height)
+        assert phi == pytest.approx(np.arctan(v * v / (GRAVITY * r)), rel=0.3)
+    straight = walk_path.Walk(footsteps.straight(p, 3.0), p)
+    assert all(straight.bank(t) == 0.0 for t in np.arange(0.0, straight.duration, 0.05))

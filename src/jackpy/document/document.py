@@ -59,6 +59,8 @@ class DocumentState:
     behaviors: dict[str, dict[str, tuple[bool, object]]] = field(default_factory=dict)
     timeline: dict | None = None
     """The timeline's contents (:meth:`Timeline.to_dict`), so timeline edits undo too."""
+    extras: dict[str, Any] = field(default_factory=dict)
+    """A copy of :attr:`Document.extras` (the step editor's walk plans)."""
 
 
 @dataclass
@@ -121,6 +123,9 @@ class Document:
         self.playing = False
         self.view_state: dict[str, Any] = {}
         """What a window keeps with the document in its file (camera), opaque here."""
+        self.extras: dict[str, Any] = {}
+        """Plain JSON-ready data that tools keep with the document, undone and saved with it
+        (``"walk_plans"``: the step editor's footsteps by figure), opaque here."""
         self.changed = False
         """Set by every change of goals or posture since the last :meth:`take_changed` (a drag's
         "did anything happen")."""
@@ -296,7 +301,8 @@ class Document:
         behaviors = {n: {b.name: (bool(b.enabled), copy.deepcopy(b.params)) for b in loop.behaviors}
                      for n, loop in self.loops.items()}
         timeline = self.timeline.to_dict() if self.timeline is not None else None
-        return DocumentState(postures, copy.deepcopy(self.goals), figures, behaviors, timeline)
+        return DocumentState(postures, copy.deepcopy(self.goals), figures, behaviors, timeline,
+                             copy.deepcopy(self.extras))
 
     def restore(self, snap: DocumentState) -> None:
         """Put back a captured state exactly (no solve follows)."""
@@ -313,6 +319,7 @@ class Document:
                 fig.q = q.copy()
                 fig.location = loc.copy()
         self.goals = copy.deepcopy(snap.goals)
+        self.extras = copy.deepcopy(snap.extras)
         if snap.timeline is not None and self.timeline is not None:
             self.timeline.load_dict(snap.timeline)  # in place: views of the timeline keep it
         self.needs_solve = False

@@ -134,6 +134,7 @@ def session_dict(doc: Document, generation: str | None = None) -> dict[str, Any]
         "format": FORMAT, "version": VERSION, "psurf_generation": generation,
         "settings": asdict(doc.settings),
         "view": doc.view_state,
+        "extras": doc.extras,
         "figures": figs,
         "behaviors": {name: {b.name: {"enabled": bool(b.enabled), "params": _params(b.params)}
                              for b in loop.behaviors} for name, loop in doc.loops.items()},
@@ -441,6 +442,8 @@ def open_into(doc: Document, path: Path) -> None:
     if data is not None and "camera" in data:  # version 1
         view["camera"] = data["camera"]
     doc.view_state = view
+    extras = (data or {}).get("extras")
+    doc.extras = dict(extras) if isinstance(extras, dict) else {}
     doc.timeline, doc.time, doc.playing = None, 0.0, False
     if data is not None and "timeline" in data:
         from jackpy.motion.timeline import Timeline  # the motion package, only when a file has one

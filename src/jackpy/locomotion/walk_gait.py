@@ -54,6 +54,7 @@ MAX_LEG = 0.995
 #: the most the heel is raised to keep the ankle within reach (rad)
 MAX_PITCH = np.radians(55.0)
 SIDES = ("left", "right")
+GRAVITY = 9.81  # m/s²
 
 
 def smooth(u: np.ndarray | float) -> np.ndarray | float:
@@ -103,6 +104,7 @@ class GaitParams:
     clearance: float = MID_SWING_CLEARANCE
     sway: float = SWAY
     arm_swing: float = ARM_SWING
+    banking: bool = True  # lean into turns by eq. (5.13) (off: the unbanked walk, for comparison)
     extra: dict = field(default_factory=dict)
 
     @property

@@ -97,6 +97,7 @@ class Walk:
         for j in range(2, len(steps)):
             self.keys.append(0.5 * (steps[j - 1].point + steps[j].point))
             self.key_dir.append(_angle_lerp(steps[j - 1].psi, steps[j].psi, 0.5))
+        self.bank_keys = self._bank_at_keys()
 
     # -- feet ------------------------------------------------------------------------------
     def _flat(self, j: int, pitch: float) -> np.ndarray:
@@ -188,6 +189,39 @@ class Walk:
         pt, yaw = _hermite_at_arc(c0, c1, a0, a1, u)
         return pt, yaw, 0.5 * u
 
+    def _bank_at_keys(self) -> np.ndarray:
+        """Banking angle φ = arctan(κ v² / g) (eq. 5.13; rad, + leaning left) at each centre-site
+        key: κ is each step's mean curvature of the centre-site path (heading change over arc
+        length) and v its speed; a key takes the mean of its two steps, 0 standing at both ends."""
+        n = len(self.steps)
+        phi = np.zeros(n)  # phi[j]: step j (footstep j swinging in), j >= 2
+        if self.p.banking:
+            from jackpy.locomotion.walk_gait import GRAVITY
+
+            for j in range(2, n):
+                c0, c1, a0, a1 = self.keys[j - 2], self.keys[j - 1], self.key_dir[j - 2], self.key_dir[j - 1]
+                length = _arc_length(c0, c1, a0, a1)
+                if length < 1e-6:
+                    continue  # a step on the spot: no travel, no banking
+                t0 = START_TIME if j == 2 else self.land[j - 1]
+                kappa = ((a1 - a0 + np.pi) % (2.0 * np.pi) - np.pi) / length
+                v = length / (self.land[j] - t0)
+                phi[j] = np.arctan(kappa * v * v / GRAVITY)
+        keys = np.zeros(len(self.keys))
+        for k in range(1, len(self.keys) - 1):  # key k joins step k + 1 and step k + 2
+            keys[k] = 0.5 * (phi[k + 1] + phi[k + 2])
+        return keys
+
+    def bank(self, t: float) -> float:
+        """Banking angle (rad, + leaning left) at ``t``: between the keys of the step, smoothly."""
+        land, n = self.land, len(self.steps)
+        if n == 2 or t < START_TIME or t >= land[-1]:
+            return 0.0
+        j = int(np.searchsorted(land[2:], t, side="right")) + 2
+        t0 = START_TIME if j == 2 else land[j - 1]
+        s = float(smooth((t - t0) / (land[j] - t0)))
+        return float((1.0 - s) * self.bank_keys[j - 2] + s * self.bank_keys[j - 1])
+
     def _sway_amplitude(self, j: int) -> float:
         """Signed (+ left) sway of step j toward its stance foot σ_{j-1}: ``p.sway`` for a foot at
         half the step width from the step's centre line (through the middle of its two centre-site
@@ -227,7 +261,9 @@ class Walk:
         p = self.p
         pt, yaw, cyc = self._centre(t)
         lat = np.array([np.cos(yaw), -np.sin(yaw)])  # left of the heading, top view (x, z)
-        pt = pt + self.sway(t) * lat
+        # banking (5.13) by the ankles: the body leans by φ about the feet, so the centre site
+        # moves toward the centre of the turn by its height·tan φ (the pelvis itself stays upright)
+        pt = pt + (self.sway(t) + p.hip_height * np.tan(self.bank(t))) * lat
         stand = p.hip_height - 0.003 * p.hip_height
         if cyc is None:
             if t < START_TIME:
@@ -329,6 +365,12 @@ def _hermite(c0, c1, a0, a1, s):
     pt = np.outer(h00, c0) + np.outer(h10, t0) + np.outer(h01, c1) + np.outer(h11, t1)
     dv = np.outer(d00, c0) + np.outer(d10, t0) + np.outer(d01, c1) + np.outer(d11, t1)
     return pt, dv
+
+
+def _arc_length(c0, c1, a0, a1) -> float:
+    """Top-view arc length (m) of the centre-site Hermite from ``c0`` to ``c1``."""
+    pts, _ = _hermite(c0, c1, a0, a1, np.linspace(0.0, 1.0, 65))
+    return float(np.sum(np.linalg.norm(np.diff(pts, axis=0), axis=1)))
 
 
 def _hermite_at_arc(c0, c1, a0, a1, u: float) -> tuple[np.ndarray, float]:

@@ -1,0 +1,52 @@
+"""A walk plan as plain data: the footsteps a step editor edits and a document keeps (issue 13).
+
+``{"steps": [[x, z, heading_rad, "left" | "right"], ...]}`` (world metres, radians; σ_0, σ_1 the
+standing feet, see :class:`~jackpy.locomotion.walk_path.Footstep`). JSON-ready, so it is saved
+with a session and copied by undo.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from jackpy.locomotion.walk_gait import SIDES
+from jackpy.locomotion.walk_path import Footstep
+
+
+class PlanError(ValueError):
+    """Plan data that is no walk (one line, naming the footstep)."""
+
+
+def to_data(steps: list[Footstep]) -> dict[str, Any]:
+    """The plan of ``steps`` as JSON-ready data."""
+    return {"steps": [[float(s.x), float(s.z), float(s.psi), s.side] for s in steps]}
+
+
+def from_data(data: Any, where: str = "walk plan") -> list[Footstep]:
+    """Footsteps of plan ``data``; :class:`PlanError` for anything that is not a walk."""
+    if not isinstance(data, dict) or not isinstance(data.get("steps"), list):
+        raise PlanError(f"{where}: needs {{'steps': [[x, z, heading, side], ...]}}")
+    steps = []
+    for j, row in enumerate(data["steps"]):
+        if not (isinstance(row, list) and len(row) == 4 and row[3] in SIDES
+                and all(isinstance(v, (int, float)) and not isinstance(v, bool) and np.isfinite(v) for v in row[:3])):
+            raise PlanError(f"{where}: footstep {j} is not [x, z, heading, 'left'|'right']: {row!r}")
+        steps.append(Footstep(float(row[0]), float(row[1]), float(row[2]), row[3]))
+    if len(steps) < 2 or {steps[0].side, steps[1].side} != set(SIDES):
+        raise PlanError(f"{where}: a walk starts from two standing footsteps, one left and one right")
+    for j in range(2, len(steps)):
+        if steps[j].side == steps[j - 1].side:
+            raise PlanError(f"{where}: footstep {j} is on the same side as footstep {j - 1}")
+    return steps
+
+
+def moved(steps: list[Footstep], j: int, x: float, z: float, psi: float) -> list[Footstep]:
+    """A copy of ``steps`` with footstep ``j`` (≥ 2: the standing feet are where the figure stands)
+    at ``(x, z)`` heading ``psi``."""
+    if not 2 <= j < len(steps):
+        raise PlanError(f"footstep {j}: only footsteps 2..{len(steps) - 1} move (0 and 1 are the standing feet)")
+    out = [Footstep(s.x, s.z, s.psi, s.side) for s in steps]
+    out[j] = Footstep(float(x), float(z), float(psi), steps[j].side)
+    return out

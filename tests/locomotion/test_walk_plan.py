@@ -1,0 +1,57 @@
+"""Walk plans as data (the step editor's footsteps in a document): round trip, bad data, moves."""
+
+import json
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+from jackpy.locomotion import footsteps, walk_plan
+from jackpy.locomotion.walk_plan import PlanError
+from tests.locomotion.walk_cases import figure_and_params
+
+
+def test_round_trip_through_json():
+    _, p = figure_and_params("male:50")
+    steps = footsteps.from_path(p, [(0.0, 0.0), (1.0, 1.0), (2.0, 1.0)])
+    again = walk_plan.from_data(json.loads(json.dumps(walk_plan.to_data(steps))))
+    assert again == steps
+
+
+@pytest.mark.parametrize("data,message", [
+    ([], "needs"),
+    ({"steps": [[0, 0, 0, "left"]]}, "two standing footsteps"),
+    ({"steps": [[0, 0, 0, "left"], [0, 0, 0, "left"]]}, "two standing footsteps"),
+    ({"steps": [[0, 0, 0, "left"], [0, 0, 0, "right"], [1, 0, 0, "right"]]}, "footstep 2 is on the same side"),
+    ({"steps": [[0, 0, 0, "left"], [0, "a", 0, "right"]]}, "footstep 1 is not"),
+    ({"steps": [[0, 0, 0, "left"], [0, float("nan"), 0, "right"]]}, "footstep 1 is not"),
+    ({"steps": [[0, 0, 0, "middle"], [0, 0, 0, "right"]]}, "footstep 0 is not"),
+])
+def test_bad_plans_are_one_line(data, message):
+    with pytest.raises(PlanError, match=message) as e:
+        walk_plan.from_data(data, "scene.env: walk plan of jack")
+    assert "\n" not in str(e.value) and str(e.value).startswith("scene.env: walk plan of jack")
+
+
+@settings(max_examples=200, deadline=None)
+@given(st.recursive(st.none() | st.booleans() | st.floats() | st.text(max_size=5) | st.integers(),
+                    lambda kids: st.lists(kids, max_size=5) | st.dictionaries(st.just("steps"), kids, max_size=1),
+                    max_leaves=20))
+def test_fuzz_only_plan_errors(data):
+    try:
+        steps = walk_plan.from_data(data)
+    except PlanError:
+        return
+    assert len(steps) >= 2 and all(np.isfinite([s.x, s.z, s.psi]).all() for s in steps)
+
+
+def test_moved_copies_and_keeps_the_standing_feet():
+    _, p = figure_and_params("male:50")
+    steps = footsteps.straight(p, 2.0)
+    out = walk_plan.moved(steps, 3, 0.5, 1.0, 0.2)
+    assert (out[3].x, out[3].z, out[3].psi, out[3].side) == (0.5, 1.0, 0.2, steps[3].side)
+    assert steps[3].x != 0.5  # the original is untouched
+    for j in (0, 1, len(steps)):
+        with pytest.raises(PlanError):
+            walk_plan.moved(steps, j, 0.0, 0.0, 0.0)
