@@ -7,7 +7,10 @@ its ends to retime it, right-click it to edit its times and weight, toggle or de
 pause, loop, frame step, playback speed, and "set key" for a part of the figure at the current
 time. Every edit is one document command, so Ctrl+Z undoes it. Playback shows baked postures at
 the real frame rate (:class:`jackpy.motion.player.Player`), dropping frames rather than slowing
-time. The panel appears when the document has a timeline.
+time. **Record** (at the chosen rate, Hz) turns what drives the figure of interest from now on (a
+drag in the viewport, a live Flock session) into key tracks from the time cursor on; Stop puts
+the take on the timeline as one undoable command (:class:`jackpy.motion.recorder.Recorder`). The
+panel appears when the document has a timeline or a human to record.
 """
 
 from __future__ import annotations
@@ -41,6 +44,47 @@ def player_of(app: "App", ui: "UiState"):
     return p, state
 
 
+def start_recording(app: "App", ui: "UiState", figure: str, rate: float | None = None):
+    """Record button: pause playback and start a take of ``figure`` at ``rate`` Hz (default: the
+    panel's rate) from the time cursor; returns the recorder."""
+    from jackpy.motion.recorder import Recorder
+
+    state = ui.panel_state(TITLE, {"view0": 0.0, "drag": None, "key_part": 0})
+    player = state.get("player")
+    if player is not None and player.playing:
+        player.pause()
+    app.doc.playing = False
+    rec = state["recorder"] = Recorder(app.doc, figure, rate or state.get("rate", 10.0))
+    rec.start()
+    return rec
+
+
+def stop_recording(app: "App", ui: "UiState") -> list:
+    """Stop button: the take onto the timeline (one undo step); returns its key tracks."""
+    state = ui.panel_state(TITLE, {"view0": 0.0, "drag": None, "key_part": 0})
+    rec = state.pop("recorder", None)
+    return rec.stop() if rec is not None else []
+
+
+def _record_controls(app: "App", ui: "UiState", state: dict) -> None:
+    rec = state.get("recorder")
+    if rec is not None and rec.recording:
+        if imgui.button("Stop"):
+            stop_recording(app, ui)
+            return
+        imgui.same_line()
+        imgui.text_colored(imgui.ImVec4(1.0, 0.3, 0.3, 1.0), f"REC {rec.figure} t = {rec.time:6.2f} s")
+        return
+    fig = app.figure_of_interest()
+    if fig is None or fig.name not in app.doc.loops:
+        return
+    if imgui.button("Record"):
+        start_recording(app, ui, fig.name)
+    imgui.same_line()
+    imgui.set_next_item_width(70)
+    _, state["rate"] = imgui.slider_float("Hz", float(state.get("rate", 10.0)), 1.0, 60.0, "%.0f")
+
+
 def tracks(timeline) -> list[tuple[str, str]]:
     """(figure, part) of every track, in first-use order (motions, then key tracks)."""
     out: list[tuple[str, str]] = []
@@ -72,17 +116,25 @@ _GREEN = 0xFF40C040
 
 def draw(app: "App", ui: "UiState") -> None:
     tl = app.doc.timeline
-    if tl is None:
+    if tl is None and not app.doc.loops:
         return
     vp = imgui.get_main_viewport()
     imgui.set_next_window_pos((270, vp.size.y - 330), imgui.Cond_.first_use_ever)
     imgui.set_next_window_size((vp.size.x - 560, 170), imgui.Cond_.first_use_ever)
     visible, ui.open_panels[TITLE] = imgui.begin(TITLE, ui.open_panels.get(TITLE, True))
     player, state = player_of(app, ui)
-    player.update(imgui.get_io().delta_time)
+    rec = state.get("recorder")
+    if rec is not None and rec.recording:
+        rec.tick(imgui.get_io().delta_time)  # (a take runs on the window's clock, shown or not)
+    elif tl is not None:
+        player.update(imgui.get_io().delta_time)
     if visible:
-        _toolbar(app, player, state)
-        _tracks(app, player, state, tl)
+        _record_controls(app, ui, state)
+        tl = app.doc.timeline  # (a first take makes the timeline)
+        if tl is not None and not (state.get("recorder") is not None and state["recorder"].recording):
+            imgui.same_line()
+            _toolbar(app, player, state)
+            _tracks(app, player, state, tl)
     imgui.end()
 
 
