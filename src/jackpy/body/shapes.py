@@ -26,6 +26,7 @@ from jackpy.body.mesh_loft import (
     tube,
 )
 from jackpy.body.sass import BodySpec
+from jackpy.body.skin_face import refine_face
 from jackpy.body.skeleton import (
     BUCHHOLZ,
     DIGITS,
@@ -234,7 +235,7 @@ def body_shapes(spec: BodySpec, sk: Skeleton) -> dict[str, tuple[Mesh, str]]:
     nb = d["neck.breadth"] / 2
     put("neck", limb(pts["spine_top"] + [0, -0.03 * s, 0.015 * s], pts["head_joint"] + [0, 0.02 * s, 0.01 * s],
                      [(0, nb * 1.05, nb * 1.0), (1, nb * 0.95, nb * 0.95)], AROUND_LIMB, cap0=0, cap1=0), "skin")
-    put("head", _head(spec, sk), "skin")
+    put("head", refine_face(_head(spec, sk), spec.stature, pts["view"], d["eyes.breadth"]), "skin")
     for side, sx in SIDES:
         eye = org[f"{side}_eye"]
         put(f"{side}_eye", _sphere(eye, 0.0125 * s), "eye")
