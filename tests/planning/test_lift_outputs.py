@@ -96,6 +96,13 @@ def test_cli_bad_input_exits_2(tmp_path: Path, capsys, argv) -> None:
     assert err[-1].startswith("jackpy lift: error:")
 
 
+def test_cli_start_out_of_reach_is_one_line(tmp_path: Path, capsys) -> None:
+    assert main(["lift", "--load", "1", "--start", "0", "0.2", "1.5", "-o", str(tmp_path / "o")]) == 1
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "out of the arm's reach" in err[0]
+    assert not (tmp_path / "o" / "lift.json").exists()
+
+
 def test_cli_output_that_is_a_file_is_refused(tmp_path: Path, capsys) -> None:
     f = tmp_path / "taken"
     f.write_text("mine")

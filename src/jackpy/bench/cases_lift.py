@@ -53,13 +53,13 @@ def _monitor_case(quick: bool) -> Result:
     import numpy as np
 
     from jackpy.body.human import make_human
-    from jackpy.planning.lifting import _arm_variables
+    from jackpy.planning.lifting import arm_variables
     from jackpy.planning.lifting_monitor import LiftingMonitor
 
     f = make_human("male", 50)
     mon = LiftingMonitor(f, "right_palm", "grip", 13.6, ["right_shoulder", "right_elbow"] + f.groups["spine"].joints)
     x = mon.vmap.x()
-    active = np.array(_arm_variables(mon.vmap, "right"))
+    active = np.array(arm_variables(mon.vmap, "right"))
     kin = f.kinematics()
     t = time_calls(lambda: mon.state(x, active), repeat=50 if quick else 300)
     base = time_calls(lambda: kin.forward(f.q, f.location), repeat=50 if quick else 300)
@@ -67,4 +67,5 @@ def _monitor_case(quick: bool) -> Result:
 
 
 CASES = [Case("lift-30lb", _lift_case, "strength-guided overhead placement of 30 lb (male 50) vs one plain IK reach"),
-         Case("lift-monitor", _monitor_case, "one condition-monitor report (torques, strengths, ratios) vs one FK pass")]
+         Case("lift-monitor", _monitor_case,
+              "one condition-monitor report (torques, strengths, ratios) vs one FK pass")]

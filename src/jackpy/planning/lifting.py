@@ -119,8 +119,8 @@ class LiftTask:
 @dataclass
 class LiftFrame:
     """One iteration: time (s), the figure's variables (:class:`VariableMap` order), grip and
-    shoulder-joint positions (world m), joint displacements, torque ratios of the monitored DOFs, the effective limit, the strategy used, the active chain,
-    the work ``sum tau_i dtheta_i`` of the step (J, eq. 5.20) and the energy so far (``sum |dW|``)."""
+    shoulder-joint positions (world m), joint displacements, torque ratios of the monitored DOFs,
+    the effective limit, the strategy used, the active chain, the work ``sum tau_i dtheta_i`` of the step (J, eq. 5.20) and the energy so far (``sum |dW|``)."""
 
     t: float
     x: np.ndarray
@@ -216,13 +216,15 @@ class LiftResult:
         }
 
 
-def _arm_variables(vmap: VariableMap, hand: str) -> list[int]:
+def arm_variables(vmap: VariableMap, hand: str) -> list[int]:
+    """Indices in ``vmap`` of the hand-shoulder chain: shoulder complex (elevation, plane, twist), elbow."""
     names = [f"{hand}_shoulder_complex.elevation", f"{hand}_shoulder_complex.abduction",
              f"{hand}_shoulder_complex.twist", f"{hand}_elbow[0]"]
     return [vmap.names.index(n) for n in names]
 
 
-def _waist_variables(vmap: VariableMap) -> list[int]:
+def waist_variables(vmap: VariableMap) -> list[int]:
+    """Indices in ``vmap`` of the added joint (:data:`WAIST_ANGLES` of the spine group)."""
     return [vmap.names.index(f"spine.{a}") for a in WAIST_ANGLES]
 
 
@@ -253,8 +255,13 @@ def overhead_task(figure: Figure, load_kg: float, hand: str = "right", **options
                     hand=hand, **options)
 
 
+#: the start posture's grip may miss ``task.start`` by this much (m)
+START_TOLERANCE = 0.01
+
+
 def place_start(figure: Figure, task: LiftTask) -> None:
-    """Pose ``figure``'s arm by IK so the grip is at ``task.start`` (wrist and forearm held)."""
+    """Pose ``figure``'s arm by IK so the grip is at ``task.start`` (wrist and forearm held);
+    ValueError when the arm cannot put it there."""
     if task.start is None:
         return
     h = figure_parts(figure).hands[task.hand]
@@ -262,6 +269,10 @@ def place_start(figure: Figure, task: LiftTask) -> None:
     problem.add(ik.Position(f"{h.segment}.{h.site}", task.start, chain=h.start_joint))
     problem.lock(f"{task.hand}_wrist", f"{task.hand}_forearm")
     ik.solve(problem, max_iterations=200, tol_position=1e-4)
+    miss = float(np.linalg.norm(figure.site_world(h.segment, h.site)[:3, 3] - task.start))
+    if miss > START_TOLERANCE:
+        raise ValueError(f"the {task.hand} hand cannot hold the load at the start {task.start.round(3).tolist()} m "
+                         f"(out of the arm's reach by {miss * 100:.1f} cm)")
 
 
 class _Lifter:
@@ -273,8 +284,8 @@ class _Lifter:
         h = figure_parts(figure).hands[task.hand]
         self.spine = list(figure.groups["spine"].joints)
         vm = VariableMap(figure)
-        self.active = np.array(_arm_variables(vm, task.hand), dtype=int)
-        self.waist = np.array(_waist_variables(vm), dtype=int)
+        self.active = np.array(arm_variables(vm, task.hand), dtype=int)
+        self.waist = np.array(waist_variables(vm), dtype=int)
         self.monitor = LiftingMonitor(figure, h.segment, h.site, task.load_kg,
                                       [f"{task.hand}_shoulder", f"{task.hand}_elbow"] + self.spine,
                                       [int(v) for v in np.concatenate([self.active, self.waist])])
