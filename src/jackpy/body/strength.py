@@ -6,9 +6,11 @@ Two data sets, sources named in the files:
   their between-subject SDs and posture curves (Anderson, Madigan & Nussbaum 2007, Table 3):
   ``T(θ, P) = (c1 + z(P)·c1_sd) · m·g·h · max(POSTURE_FLOOR, cos(c2·(θ - c3)))``, floored at 20 % of
   the mean (m body mass in kg, h stature in m, θ the DOF angle in rad).
-* ``data/strength.csv`` - every other DOF: 50th-percentile male torques that no cited source backs
-  yet, a female ratio per body region (Laubach 1976) and ``T(P) = T50 · max(0.2, 1 + STRENGTH_CV·z(P))``;
-  no posture dependence.
+* ``data/strength_regression.csv`` - elbow flexion and wrist flexion toward their upper limits, by sex, from body size (Harbo, Brincks & Andersen 2012):
+  ``T50 = I + A·age + H·h + W·m`` (age :data:`REFERENCE_AGE`), spread as the rows below.
+* ``data/strength.csv`` - every other DOF and direction: 50th-percentile male torques that no cited
+  source backs yet, a female ratio per body region (Laubach 1976) and
+  ``T(P) = T50 · max(0.2, 1 + STRENGTH_CV·z(P))``; no posture dependence.
 """
 
 from __future__ import annotations
@@ -31,6 +33,8 @@ POSTURE_FLOOR = 0.1
 STRENGTH_FLOOR = 0.2
 #: gravity (m/s^2) of the source's normalisation by body weight times stature
 GRAVITY = 9.81
+#: age (years) at which the age-dependent rows (strength_regression.csv) are evaluated [decision]
+REFERENCE_AGE = 30.0
 
 
 @cache
@@ -45,6 +49,15 @@ def posture_data() -> dict[tuple[str, str, str, str], tuple[float, float, float,
     """``{(joint kind, dof, "lower"|"upper", sex): (c1, c1_sd, c2, c3)}`` of strength_posture.csv."""
     return {(r["joint"], r["dof"], r["side"], r["sex"]): tuple(float(r[k]) for k in ("c1", "c1_sd", "c2", "c3"))
             for r in data_rows("strength_posture.csv")}
+
+
+@cache
+def regression_data() -> dict[tuple[str, str, str, str], tuple[float, float, float, float]]:
+    """``{(joint kind, dof, "lower"|"upper", sex): (intercept, per year, per m, per kg)}`` of
+    strength_regression.csv (N m)."""
+    return {(r["joint"], r["dof"], r["side"], r["sex"]):
+            tuple(float(r[k]) for k in ("intercept", "age_coef", "stature_coef", "mass_coef"))
+            for r in data_rows("strength_regression.csv")}
 
 
 def has_posture(kind: str, dof: str) -> bool:
@@ -63,14 +76,15 @@ def torque(kind: str, dof: str, sex: str, percentile: float, angle: float | None
 
     ``angle`` (rad, the DOF's displacement) evaluates the posture curve where the data have one;
     ``None`` gives each direction's peak over posture. ``mass_kg``/``stature_m`` scale the
-    posture-dependent rows (default: the sex's ANSUR II median body); other rows ignore all three.
+    posture-dependent and regression rows (default: the sex's ANSUR II median body); the other
+    rows ignore all three.
     """
     check_sex(sex)
     z = float(norm.ppf(check_percentile(percentile) / 100.0))
+    m, h = _median_body(sex)
+    m = m if mass_kg is None else float(mass_kg)
+    h = h if stature_m is None else float(stature_m)
     if has_posture(kind, dof):
-        m, h = _median_body(sex)
-        m = m if mass_kg is None else float(mass_kg)
-        h = h if stature_m is None else float(stature_m)
         out = []
         for side in ("lower", "upper"):
             c1, sd, c2, c3 = posture_data()[(kind, dof, side, sex)]
@@ -79,9 +93,15 @@ def torque(kind: str, dof: str, sex: str, percentile: float, angle: float | None
         return out[0], out[1]
     lo, hi, ratio = strength_data()[(kind, dof)]
     f = max(STRENGTH_FLOOR, 1.0 + STRENGTH_CV * z)
-    if sex == "female":
-        f *= ratio
-    return lo * f, hi * f
+    out = []
+    for side, t50 in (("lower", lo), ("upper", hi)):
+        coef = regression_data().get((kind, dof, side, sex))
+        if coef is not None:  # cited by sex and body size: no female ratio
+            t50 = coef[0] + coef[1] * REFERENCE_AGE + coef[2] * h + coef[3] * m
+        elif sex == "female":
+            t50 *= ratio
+        out.append(t50 * f)
+    return out[0], out[1]
 
 
 def strength_table(figure: Figure, sex: str | None = None, percentile: float | None = None,
