@@ -37,7 +37,7 @@ def scene():
 def planned(scene):
     wp, f, target = scene
     q_before = f.q.copy()
-    m = plan_reach_motion(f, target, "right", list(wp.objects.values()), seed=0)
+    m = plan_reach_motion(f, target, "right", list(wp.objects.values()), seed=0, time_limit=600.0)  # never the limit
     assert np.array_equal(f.q, q_before)  # the caller's figure is not moved
     return m
 
@@ -108,10 +108,40 @@ def test_motion_file_plays_the_plan(scene, planned, tmp_path):
     assert np.linalg.norm(c.site_world("right_palm", "grip")[:3, 3] - planned.hand[-1]) < 1e-6
 
 
+def test_timeline_plays_the_plan(planned):
+    """The motion file's timeline holds joint key tracks of the arm; baked through the behaviors
+    (the workbench's player does this) the hand follows the plan within 2 cm (balance moves the
+    body a little)."""
+    from jackpy.motion import cast
+    from jackpy.motion.bake import Baker
+
+    tl = planned.motion_file(fps=30.0, human="male:50").timeline
+    assert sorted(t.part for t in tl.tracks) == sorted(f"joint:{j}" for j in planned.space.joints)
+    env, loops = cast.build(tl, scene=BOX)
+    (name, loop), = loops.items()
+    frames = Baker(tl, loops, env, fps=30.0).bake()
+    planned_hand = planned.space.hand_positions(planned.timed(30.0, 0.5))
+    fig = loop.figure
+    errors = []
+    for fr, want in zip(frames, planned_hand):
+        fr[name].apply_to(fig)
+        errors.append(np.linalg.norm(fig.site_world("right_palm", "grip")[:3, 3] - want))
+    assert len(errors) >= len(planned_hand) - 1 and max(errors) < 0.02
+
+
 def test_reach_command_plans(tmp_path, capsys):
-    rc = main(["reach", str(BOX), "--figure", "male:50", "--target", "box.inside", "--plan", "-o", str(tmp_path)])
+    rc = main(["reach", str(BOX), "--figure", "male:50", "--target", "box.inside", "--plan", "--time-limit", "600",
+               "-o", str(tmp_path)])
     assert rc == 0
     res = json.loads((tmp_path / "reach.json").read_text())
     assert res["motion"]["status"] == "planned" and res["motion"]["shortfall_m"] <= 0.01
     assert (tmp_path / "reach.motion.json").exists()
     assert "planned reach motion" in capsys.readouterr().out
+
+
+def test_reach_command_refuses_a_bad_time_limit(tmp_path, capsys):
+    with pytest.raises(SystemExit) as exc:
+        main(["reach", str(BOX), "--target", "box.inside", "--plan", "--time-limit", "0", "-o", str(tmp_path)])
+    assert exc.value.code == 2
+    last = capsys.readouterr().err.strip().splitlines()[-1]  # argparse's usage, then one line
+    assert last == "jackpy reach: error: argument --time-limit: must be > 0, not 0"

@@ -7,6 +7,8 @@ from __future__ import annotations
 
 import argparse
 
+from jackpy.commands.motion import positive
+
 
 def register(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("reach", help="collision-aware reach of a workplace target (verdict, staged posture "
@@ -22,7 +24,9 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="plan a collision-free reach motion of the arm (OMPL RRT-Connect, needs the planning "
                         "extra) from the standing posture to the target; writes reach.motion.json")
     p.add_argument("--seed", type=int, default=0, help="seed of the motion planner (default 0: repeatable)")
-    p.add_argument("--fps", type=float, default=30.0, help="frame rate of reach.motion.json (default 30)")
+    p.add_argument("--time-limit", type=positive, default=120.0, metavar="S",
+                   help="longest planner run (s, default 120; a run that finds no path in it reports 'no path')")
+    p.add_argument("--fps", type=positive, default=30.0, help="frame rate of reach.motion.json (default 30)")
     p.add_argument("--contact-tolerance", type=float, default=10.0, metavar="MM",
                    help="deepest allowed contact of a body segment with an object (mm, default 10)")
     p.add_argument("-o", "--output", required=True, metavar="DIR",
@@ -46,8 +50,6 @@ def run(args: argparse.Namespace) -> int:
         raise JackpyError(f"--figure takes one SEX:PERCENTILE, not {args.figure!r}")
     if args.contact_tolerance < 0:
         raise JackpyError("--contact-tolerance must be >= 0")
-    if not args.fps > 0:
-        raise JackpyError("--fps must be > 0")
     obj, target = resolve_target(wp.env, args.target)
     figure = _human(*figures[0])
     stand_figure(figure, wp.stand)
@@ -68,7 +70,8 @@ def run(args: argparse.Namespace) -> int:
         from jackpy.planning.reach_motion import plan_reach_motion
 
         motion = plan_reach_motion(figure, target, hand, list(wp.objects.values()), obj.name,
-                                   contact_tolerance=args.contact_tolerance / 1000.0, seed=args.seed)
+                                   contact_tolerance=args.contact_tolerance / 1000.0, seed=args.seed,
+                                   time_limit=args.time_limit)
         out["motion"] = motion.to_dict()
         if motion.planned:
             motion_file.save(motion.motion_file(args.fps, human=args.figure), Path(args.output) / "reach.motion.json")

@@ -72,6 +72,10 @@ class ArmSpace:
         self.A = np.vstack(rows)
         self.b = np.concatenate([np.zeros(0)] + [np.asarray(g.group.b, dtype=float) for g in self.groups])
         self.x0 = self.x()
+        kin = figure.kinematics()
+        dofs = np.unique(np.concatenate([self.free_dofs] + [g.dofs for g in self.groups]))
+        #: the joints the variables move, root side first
+        self.joints = list(dict.fromkeys(kin.joint_names[j] for j in kin.dof_joint[dofs]))
 
     def x(self) -> np.ndarray:
         """The figure's current variables."""

@@ -168,9 +168,26 @@ class ReachMotion:
         at = np.linspace(0.0, s[-1], n)
         return np.array([np.interp(at, s, self.frames[:, k]) for k in range(self.frames.shape[1])]).T
 
+    def key_tracks(self, fps: float = 30.0, speed: float = 0.5, figure_name: str | None = None) -> list:
+        """The motion as the timeline's joint-angle key tracks (``joint:NAME``, one per joint of the
+        arm chain, a key per frame of :meth:`timed`, linear between keys): what the workbench's
+        timeline plays and edits."""
+        from jackpy.motion.keyframes import KeyTrack
+
+        fig = self.space.figure
+        xs = self.timed(fps, speed)
+        qs = np.array([self.space.q(x) for x in xs]).reshape(len(xs), -1)
+        tracks = []
+        for jn in self.space.joints:
+            sl = fig.joint_dof_slice(jn)
+            keys = [(k / fps, qs[k, sl].copy()) for k in range(len(xs))]
+            tracks.append(KeyTrack(figure_name or fig.name, f"joint:{jn}", keys))
+        return tracks
+
     def motion_file(self, fps: float = 30.0, speed: float = 0.5, human: str | None = None):
         """A :class:`~jackpy.motion.motion_file.MotionFile` of the motion baked at ``fps`` with the
-        hand at ``speed`` m/s (:meth:`timed`): what ``jackpy motion export`` and the player read."""
+        hand at ``speed`` m/s (:meth:`timed`), with its timeline of joint key tracks
+        (:meth:`key_tracks`; ``human`` as ``male:50`` names the figure's cast)."""
         from jackpy.motion.bake import Posture as Frame
         from jackpy.motion.motion_file import BakedFigure, MotionFile
         from jackpy.motion.timeline import Timeline
@@ -179,6 +196,10 @@ class ReachMotion:
         xs = self.timed(fps, speed)
         frames = [Frame(self.space.q(x), tuple(fig.root), fig.location.copy()) for x in xs]
         tl = Timeline()
+        for track in self.key_tracks(fps, speed):
+            tl.add(track)
+        if human is not None:
+            tl.cast[fig.name] = {"human": human}
         tl.duration = max(len(frames) - 1, 0) / fps
         return MotionFile(tl, fps, {fig.name: BakedFigure.from_postures(fig, frames, human)})
 
