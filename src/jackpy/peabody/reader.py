@@ -659,19 +659,23 @@ class _Parser:
     # ----- building ---------------------------------------------------------------------------
     def joint_values(self, where: str, tok: int, values: list[_Value], kinds: list[str]) -> np.ndarray:
         """Values for DOFs of ``kinds`` ('R' deg, 'T' cm) in SI, checking count and units."""
+        return np.array(self.si_values(where, tok, values, kinds))
+
+    def si_values(self, where: str, tok: int, values: list[_Value], kinds: list[str]) -> list[float]:
+        """:meth:`joint_values` as a list of floats."""
         if len(values) != len(kinds):
             raise self.fig_error(tok, f"{where}: {self.text(tok)} has {len(values)} values for {len(kinds)} DOFs")
-        bare = [v for v, u, _ in values if u < 0 and -MAX_MAGNITUDE <= v <= MAX_MAGNITUDE]
-        if len(bare) == len(values):
-            # bare numbers within range (the common case): one array, the same bits as below
-            return np.array(bare) * np.array([DEG if k == "R" else CM for k in kinds])
+        bare = [v * (DEG if k == "R" else CM) for (v, u, _), k in zip(values, kinds)
+                if u < 0 and -MAX_MAGNITUDE <= v <= MAX_MAGNITUDE]
+        if len(bare) == len(values):  # bare numbers within range (the common case), the same bits as below
+            return bare
         out = []
         for k, (v, kind) in enumerate(zip(values, kinds)):
             if kind == "R":
                 out.append(self.convert(v, ANGLE_UNITS, f"{where} DOF {k} (rotation)") * DEG)
             else:
                 out.append(self.convert(v, LENGTH_UNITS, f"{where} DOF {k} (translation)") * CM)
-        return np.array(out)
+        return out
 
     def build_joint(self, fig: Figure, spec: _JointSpec) -> None:
         name = self.text(spec.name)
@@ -681,19 +685,19 @@ class _Parser:
         if spec.connect is None:
             raise self.fig_error(spec.name, f"{where}: no 'connect A.a to B.b;'")
         kinds = [k for k, _ in spec.dofs]
-        limits = {key: self.joint_values(where, *spec.values[key], kinds)
+        limits = {key: self.si_values(where, *spec.values[key], kinds)
                   for key in ("lower", "upper") if key in spec.values}
         dofs = []
         for k, (kind, axis) in enumerate(spec.dofs):
             lo, hi = DEFAULT_ROTATION_LIMITS if kind == "R" else DEFAULT_TRANSLATION_LIMITS
-            dofs.append(Dof(kind, axis, float(limits["lower"][k]) if "lower" in limits else lo,
-                            float(limits["upper"][k]) if "upper" in limits else hi))
+            dofs.append(Dof(kind, axis, limits["lower"][k] if "lower" in limits else lo,
+                            limits["upper"][k] if "upper" in limits else hi))
             if dofs[-1].lower > dofs[-1].upper:
                 at = spec.values["lower"][0] if "lower" in spec.values else spec.values["upper"][0]
                 raise self.fig_error(at, f"{where} DOF {k}: lower limit above upper")
         if "displacement" in spec.values:
             at, values = spec.values["displacement"]
-            disp = self.joint_values(where, at, values, kinds)
+            disp = self.si_values(where, at, values, kinds)
             for k, (d, v) in enumerate(zip(dofs, disp)):
                 if not (d.lower - 1e-9 <= v <= d.upper + 1e-9):
                     unit, f = ("deg", 180 / np.pi) if d.kind == "R" else ("cm", 100.0)
