@@ -55,3 +55,18 @@ def test_moved_copies_and_keeps_the_standing_feet():
     for j in (0, 1, len(steps)):
         with pytest.raises(PlanError):
             walk_plan.moved(steps, j, 0.0, 0.0, 0.0)
+
+
+def test_a_stride_added_then_deleted_is_the_plan_again():
+    _, p = figure_and_params("male:50")
+    steps = footsteps.straight(p, 3.0)
+    for j in range(2, len(steps) - 2):
+        more = walk_plan.with_stride_added(steps, j)
+        assert [s.side for s in more[j + 1:j + 3]] == [steps[j + 1].side, steps[j].side]
+        assert more[j + 1].z == pytest.approx(0.5 * (steps[j - 1].z + steps[j + 1].z))
+        assert walk_plan.with_stride_deleted(more, j + 1) == steps
+        walk_plan.from_data(walk_plan.to_data(more))  # still a walk
+    with pytest.raises(PlanError):
+        walk_plan.with_stride_added(steps, len(steps) - 2)
+    with pytest.raises(PlanError):
+        walk_plan.with_stride_deleted(steps, 1)

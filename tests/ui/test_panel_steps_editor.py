@@ -9,8 +9,8 @@ from conftest import in_child_process
 
 from jackpy.document import Document
 from jackpy.ui import session
-from jackpy.ui.panels.steps_editor import (TITLE, View, bake, defaults, footsteps_of, move_footstep, plan_to,
-                                           walk_of)
+from jackpy.ui.panels.steps_editor import (TITLE, View, add_stride, bake, defaults, delete_stride, footsteps_of,
+                                           move_footstep, plan_to, walk_of)
 
 
 def _planned():
@@ -47,6 +47,23 @@ def test_move_is_one_undo_step_and_the_walk_follows():
     assert doc.redo() and doc.redo() and footsteps_of(doc, fig.name) == steps1
 
 
+def test_add_and_delete_a_stride_are_undoable():
+    doc, st, fig = _planned()
+    steps0 = footsteps_of(doc, fig.name)
+    d0 = walk_of(doc, st, fig).duration
+    add_stride(doc, fig.name, 3)
+    steps1 = footsteps_of(doc, fig.name)
+    assert len(steps1) == len(steps0) + 2
+    assert all(a.side != b.side for a, b in zip(steps1[1:], steps1[2:]))
+    assert walk_of(doc, st, fig).duration > d0  # two more steps to walk
+    delete_stride(doc, fig.name, 4)  # the two just added
+    assert footsteps_of(doc, fig.name) == steps0
+    assert doc.undo() and footsteps_of(doc, fig.name) == steps1
+    assert doc.undo() and footsteps_of(doc, fig.name) == steps0
+    with pytest.raises(ValueError, match="standing feet"):
+        delete_stride(doc, fig.name, len(steps0) - 3)
+
+
 def test_standing_feet_do_not_move():
     doc, st, fig = _planned()
     with pytest.raises(ValueError, match="standing feet"):
@@ -81,6 +98,13 @@ def test_view_round_trip():
     p = np.array([0.3, 1.2])
     assert np.allclose(v.to_floor(v.to_px(p)), p)
     assert v.to_px(p + [0.0, 0.1])[1] < v.to_px(p)[1]  # +z is up the screen
+    assert v.to_px(p + [0.1, 0.0])[0] < v.to_px(p)[0]  # +x to the left, seen from above
+    # walking up the screen (+z), the left foot (+x) is drawn on the left
+    steps = footsteps_of(doc, fig.name)
+    left = next(s for s in steps[2:] if s.side == "left")
+    right = next(s for s in steps[2:] if s.side == "right")
+    if abs(steps[-1].psi) < 0.5:
+        assert v.to_px(left.point)[0] < v.to_px(right.point)[0]
 
 
 @pytest.mark.skipif(not os.environ.get("DISPLAY"), reason="window tests need an X display (xvfb-run)")
@@ -123,7 +147,7 @@ def test_drag_a_footprint_in_the_window_then_ctrl_z(request):
         win.frame()
         steps1 = footsteps_of(app.doc, fig.name)
         moved_by = steps1[j].x - steps0[j].x
-        assert moved_by == pytest.approx(30.0 / scale, rel=0.05)  # 30 px to the right
+        assert moved_by == pytest.approx(-30.0 / scale, rel=0.05)  # 30 px right: -x seen from above
         assert all(a == b for k, (a, b) in enumerate(zip(steps0, steps1)) if k != j)
         walk1 = _targets(walk_of(app.doc, st, fig))
         assert walk1.shape != walk0.shape or np.abs(walk1 - walk0).max() > 0.01  # the walk changed

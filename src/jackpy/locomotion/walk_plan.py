@@ -50,3 +50,32 @@ def moved(steps: list[Footstep], j: int, x: float, z: float, psi: float) -> list
     out = [Footstep(s.x, s.z, s.psi, s.side) for s in steps]
     out[j] = Footstep(float(x), float(z), float(psi), steps[j].side)
     return out
+
+
+def _angle_mid(a: float, b: float) -> float:
+    return a + 0.5 * ((b - a + np.pi) % (2.0 * np.pi) - np.pi)
+
+
+def with_stride_added(steps: list[Footstep], j: int) -> list[Footstep]:
+    """A copy of ``steps`` with one stride (a footstep of each side) added after footstep ``j``:
+    the new ones lie halfway between their side's neighbours (j − 1 and j + 1, j and j + 2), so the
+    feet still alternate and the steps there are halved."""
+    if not 2 <= j <= len(steps) - 3:
+        raise PlanError(f"footstep {j}: a stride is added after footsteps 2..{len(steps) - 3} "
+                        "(between a walking footstep and the standing feet at the end)")
+
+    def mid(a: Footstep, b: Footstep) -> Footstep:
+        return Footstep(0.5 * (a.x + b.x), 0.5 * (a.z + b.z), _angle_mid(a.psi, b.psi), a.side)
+
+    out = [Footstep(s.x, s.z, s.psi, s.side) for s in steps]
+    return out[:j + 1] + [mid(steps[j - 1], steps[j + 1]), mid(steps[j], steps[j + 2])] + out[j + 1:]
+
+
+def with_stride_deleted(steps: list[Footstep], j: int) -> list[Footstep]:
+    """A copy of ``steps`` without footsteps ``j`` and ``j + 1`` (one stride: the feet still
+    alternate); the standing feet at both ends stay."""
+    if not 2 <= j <= len(steps) - 4:
+        raise PlanError(f"footstep {j}: a stride deleted starts at footsteps 2..{len(steps) - 4} "
+                        "(the standing feet at both ends stay)")
+    out = [Footstep(s.x, s.z, s.psi, s.side) for s in steps]
+    return out[:j] + out[j + 2:]

@@ -4,11 +4,13 @@ yellow), with the list of footsteps beside them.
 
 Plan a walk to a floor point (around the scene's CAD objects, :func:`jackpy.locomotion.walk_to.walk_to`),
 then drag a footprint in the canvas to move it, or nudge the selected one (5 cm, 5°) with the
-buttons. The walk is re-planned from the edited footsteps at once (the path and duration shown
+buttons; add a stride after it (a footstep of each side, halfway between their neighbours) or
+delete the stride it starts (it and the next footstep), so that the feet still alternate. The walk is re-planned from the edited footsteps at once (the path and duration shown
 follow). Every edit is one document command, so Ctrl+Z undoes it; the plan lives in the
 document's ``extras["walk_plans"]`` (:mod:`jackpy.locomotion.walk_plan`) and is saved with it.
 "Bake" writes the walk as a motion file (baked frames, on a copy of the figure).
-The imgui drawing only calls :func:`plan_to`, :func:`move_footstep`, :func:`press`,
+The imgui drawing only calls :func:`plan_to`, :func:`move_footstep`, :func:`add_stride`,
+:func:`delete_stride`, :func:`press`,
 :func:`drag_to`, :func:`release` and :func:`bake`, which tests drive headless or through the window.
 """
 
@@ -37,6 +39,7 @@ PICK_PX = 12.0  # a press this close (pixels) to a footprint's centre grabs it
 FOOT_HALF_WIDTH = 0.045  # drawn footprint (m)
 COLOURS = {"left": 0xFFE08040, "right": 0xFF4050E0}  # ABGR: blue-ish left, red-ish right
 PATH_COLOUR = 0xFF40D0E0
+CONTROLS_H = 60.0  # pixels kept below the canvas for the selected footstep's controls
 
 
 def defaults() -> dict[str, Any]:
@@ -85,6 +88,18 @@ def move_footstep(doc: "Document", name: str, j: int, x: float, z: float, psi: f
     doc.command(f"move footstep {j} of {name}", lambda: _store(doc, name, steps))
 
 
+def add_stride(doc: "Document", name: str, j: int) -> None:
+    """Add a stride after footstep ``j`` (:func:`walk_plan.with_stride_added`): one command."""
+    steps = walk_plan.with_stride_added(footsteps_of(doc, name) or [], j)
+    doc.command(f"add a stride after footstep {j} of {name}", lambda: _store(doc, name, steps))
+
+
+def delete_stride(doc: "Document", name: str, j: int) -> None:
+    """Delete footsteps ``j`` and ``j + 1`` (:func:`walk_plan.with_stride_deleted`): one command."""
+    steps = walk_plan.with_stride_deleted(footsteps_of(doc, name) or [], j)
+    doc.command(f"delete footsteps {j}, {j + 1} of {name}", lambda: _store(doc, name, steps))
+
+
 def walk_of(doc: "Document", st: dict[str, Any], fig: "Figure") -> Walk | None:
     """The walk of the figure's plan as it is now (re-planned whenever the plan changed)."""
     steps = footsteps_of(doc, fig.name)
@@ -105,7 +120,8 @@ def centre_path(walk: Walk, dt: float = 0.05) -> np.ndarray:
 
 # ---------------------------------------------------------------------------------- the canvas
 class View:
-    """Top view of the floor in a canvas: floor (x, z) m -> pixels (x right, z up the screen)."""
+    """Top view of the floor in a canvas, seen from above: floor (x, z) m -> pixels (z up the
+    screen, x to the left, as the right-handed y-up world looks from above)."""
 
     def __init__(self, origin, size, steps: list[Footstep]) -> None:
         pts = np.array([s.point for s in steps])
@@ -116,11 +132,10 @@ class View:
 
     def to_px(self, p) -> np.ndarray:
         d = (np.asarray(p, float) - self.centre) * self.scale
-        return self.mid + np.array([d[0], -d[1]])
+        return self.mid - d
 
     def to_floor(self, px) -> np.ndarray:
-        d = (np.asarray(px, float) - self.mid) / self.scale
-        return self.centre + np.array([d[0], -d[1]])
+        return self.centre - (np.asarray(px, float) - self.mid) / self.scale
 
 
 def press(doc: "Document", st: dict[str, Any], name: str, px) -> int | None:
@@ -168,7 +183,7 @@ def _footprint(view: View, s: Footstep, p) -> list[np.ndarray]:
 def _canvas(imgui: Any, app: "App", st: dict[str, Any], fig: "Figure", steps: list[Footstep], walk: Walk) -> None:
     origin = imgui.get_cursor_screen_pos()
     avail = imgui.get_content_region_avail()
-    size = (max(avail.x, 100.0), max(avail.y, 100.0))
+    size = (max(avail.x, 100.0), max(avail.y - CONTROLS_H, 100.0))
     if st["drag"] is None:  # the view holds still while a footprint is dragged
         st["view"] = View((origin.x, origin.y), size, steps)
     view: View = st["view"]
@@ -192,6 +207,32 @@ def _canvas(imgui: Any, app: "App", st: dict[str, Any], fig: "Figure", steps: li
             drag_to(app.doc, st, fig.name, (mouse.x, mouse.y))
         else:
             release(app.doc, st, fig.name)
+
+
+def _selection_controls(imgui: Any, app: "App", st: dict[str, Any], fig: "Figure", steps: list[Footstep]) -> None:
+    """Below the canvas (so that selecting does not move it): the selected footstep, its nudges,
+    adding and deleting a stride."""
+    j = st["selected"]
+    if j is None or not 2 <= j < len(steps):
+        imgui.text("no movable footstep selected (0 and 1 are the standing feet)")
+        return
+    s = steps[j]
+    imgui.text(f"footstep {j} ({s.side}): x {s.x * 100:.1f} cm, z {s.z * 100:.1f} cm, "
+               f"heading {np.degrees(s.psi):.1f} deg")
+    for label, dx, dz, dpsi in (("-x", -NUDGE, 0, 0), ("+x", NUDGE, 0, 0), ("-z", 0, -NUDGE, 0),
+                                ("+z", 0, NUDGE, 0), ("turn L", 0, 0, TURN), ("turn R", 0, 0, -TURN)):
+        if imgui.button(label):
+            move_footstep(app.doc, fig.name, j, s.x + dx, s.z + dz, s.psi + dpsi)
+        imgui.same_line()
+    for label, edit in (("Add stride after", add_stride), ("Delete stride", delete_stride)):
+        if imgui.button(label):
+            try:
+                edit(app.doc, fig.name, j)
+                st["message"] = ""
+            except ValueError as exc:  # at the ends of the walk: said, nothing changed
+                st["message"] = str(exc)
+        imgui.same_line()
+    imgui.new_line()
 
 
 def bake(st: dict[str, Any], fig: "Figure", walk: Walk) -> None:
@@ -234,17 +275,6 @@ def draw(app: "App", ui: "UiState") -> None:
             st["message"] = str(exc)
         if steps is not None and walk is not None:
             imgui.text(f"{fig.name}: {len(steps)} footsteps, {walk.duration:.2f} s")
-            j = st["selected"]
-            if j is not None and 2 <= j < len(steps):
-                s = steps[j]
-                imgui.text(f"footstep {j} ({s.side}): x {s.x * 100:.1f} cm, z {s.z * 100:.1f} cm, "
-                           f"heading {np.degrees(s.psi):.1f} deg")
-                for label, dx, dz, dpsi in (("-x", -NUDGE, 0, 0), ("+x", NUDGE, 0, 0), ("-z", 0, -NUDGE, 0),
-                                            ("+z", 0, NUDGE, 0), ("turn L", 0, 0, TURN), ("turn R", 0, 0, -TURN)):
-                    if imgui.button(label):
-                        move_footstep(app.doc, fig.name, j, s.x + dx, s.z + dz, s.psi + dpsi)
-                    imgui.same_line()
-                imgui.new_line()
             imgui.set_next_item_width(200)
             st["path"] = imgui.input_text("motion file", st["path"])[1]
             imgui.same_line()
@@ -253,9 +283,9 @@ def draw(app: "App", ui: "UiState") -> None:
                     bake(st, fig, walk)
                 except (JackpyError, OSError, ValueError) as exc:
                     st["message"] = str(exc)
-            if st["message"]:
-                imgui.text_wrapped(st["message"])
+            imgui.text_wrapped(st["message"] or "Click a footprint to select it, drag it to move it.")
             _canvas(imgui, app, st, fig, steps, walk)
+            _selection_controls(imgui, app, st, fig, steps)
         else:
             imgui.text_wrapped(st["message"] or "No walk yet: give a goal and press Plan walk.")
     elif visible:
