@@ -38,7 +38,8 @@ def renderer(egl_context):
 
 
 def two_bone_tube() -> SkinnedMesh:
-    """An open tube of radius 12 cm along y from 0 to 1 m in 20 rings, bone 0 below 0.5 m, bone 1 above, blended over 0.4..0.6."""
+    """An open tube of radius 12 cm along y from 0 to 1 m in 20 rings: bone 0 below 0.5 m, bone 1
+    above, blended over 0.4..0.6 m."""
     rings = np.linspace(0.0, 1.0, 21)
     phi = np.linspace(0, 2 * np.pi, 25)[:-1]
     v = np.array([[0.12 * np.sin(a), y, 0.12 * np.cos(a)] for y in rings for a in phi])

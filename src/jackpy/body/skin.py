@@ -38,9 +38,8 @@ from jackpy.body.skeleton import build_skeleton
 from jackpy.peabody.geometry import Mesh
 from jackpy.peabody.model import Figure
 
-__all__ = ["SPINE_SEGMENTS", "Skin", "SkinPiece", "bone_matrices", "build_skin", "build_skins", "deform", "segment_surfaces", "skin_for",
-           "skins_for",
-           "skinned_pieces"]
+__all__ = ["SPINE_SEGMENTS", "Skin", "SkinPiece", "bone_matrices", "build_skin", "build_skins", "deform",
+           "segment_surfaces", "skin_for", "skinned_pieces", "skins_for"]
 
 #: the torso's bones from the bottom up (the segments whose rigid slabs the skin replaces)
 SPINE_SEGMENTS = ("pelvis", "l5", "l4", "l3", "l2", "l1") + tuple(f"t{k}" for k in range(12, 0, -1))
