@@ -134,4 +134,5 @@ def test_com_over_support(human, kind):
     assert worst_ds <= DS_TOLERANCE, f"COM {worst_ds * 100:.1f} cm outside the double support"
     assert worst_ml[True] <= ml_steady, f"COM {worst_ml[True] * 100:.1f} cm beside the steady stance foot"
     assert worst_ml[False] <= ML_ANY, f"COM {worst_ml[False] * 100:.1f} cm beside the start/stop stance foot"
-    assert worst_ap <= ap_tol, f"COM {worst_ap * 100:.1f} cm before or behind the stance foot (allowed {ap_tol * 100:.1f})"
+    assert worst_ap <= ap_tol, (f"COM {worst_ap * 100:.1f} cm before or behind the stance foot "
+                                f"(allowed {ap_tol * 100:.1f})")

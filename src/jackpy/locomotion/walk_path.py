@@ -26,8 +26,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from jackpy.locomotion.walk_gait import (DOUBLE_SUPPORT, FOOT_FLAT, HEEL_OFF, MAX_LEG, MAX_PITCH, PITCH_HS, PITCH_TO,
-                                         SIDES, START_TIME, STOP_TIME, SWAY_CROSSING, TOES_RELEASE, GaitParams, foot_transform,
-                                         pelvis_drop, rot_y, smooth, swing_lift, swing_pitch)
+                                         SIDES, START_TIME, STOP_TIME, SWAY_CROSSING, TOES_RELEASE, GaitParams,
+                                         foot_transform, pelvis_drop, rot_y, smooth, swing_lift, swing_pitch)
 
 
 @dataclass

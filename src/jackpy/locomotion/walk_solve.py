@@ -59,7 +59,8 @@ class WalkSolver:
         self.legs = Problem(figure)
         self.goals = {}
         for s in SIDES:
-            self.goals[f"{s}_foot"] = self.legs.add(PositionOrientation(f"{s}_foot.ball", np.eye(4), weight=100.0, position_weight=0.8), 0)
+            foot = PositionOrientation(f"{s}_foot.ball", np.eye(4), weight=100.0, position_weight=0.8)
+            self.goals[f"{s}_foot"] = self.legs.add(foot, 0)
             self.goals[f"{s}_tip"] = self.legs.add(Position(f"{s}_toes.tip", np.zeros(3), weight=10.0), 0)
             self.goals[f"{s}_knee"] = self.legs.add(Position(f"{s}_shank.base", np.zeros(3), weight=0.005), 0)
         self.legs.lock(*sorted(set(figure.joints) - leg), *sorted(groups))

@@ -1,17 +1,18 @@
 """Step editor panel ([SH5] §5.2.4, Fig 5.10; issue 13): the footsteps of the figure of
-interest's walk, drawn top view (left feet blue, right feet red, the centre site's path in
-yellow), with the list of footsteps beside them.
+interest's walk, drawn top view as seen from above (left feet blue, right feet red, the standing
+feet grey, the centre site's path yellow), the selected footstep's controls below.
 
-Plan a walk to a floor point (around the scene's CAD objects, :func:`jackpy.locomotion.walk_to.walk_to`),
-then drag a footprint in the canvas to move it, or nudge the selected one (5 cm, 5°) with the
-buttons; add a stride after it (a footstep of each side, halfway between their neighbours) or
-delete the stride it starts (it and the next footstep), so that the feet still alternate. The walk is re-planned from the edited footsteps at once (the path and duration shown
-follow). Every edit is one document command, so Ctrl+Z undoes it; the plan lives in the
-document's ``extras["walk_plans"]`` (:mod:`jackpy.locomotion.walk_plan`) and is saved with it.
-"Bake" writes the walk as a motion file (baked frames, on a copy of the figure).
-The imgui drawing only calls :func:`plan_to`, :func:`move_footstep`, :func:`add_stride`,
-:func:`delete_stride`, :func:`press`,
-:func:`drag_to`, :func:`release` and :func:`bake`, which tests drive headless or through the window.
+Plan a walk to a floor point (around the scene's CAD objects, as
+:func:`jackpy.locomotion.walk_to.walk_to`), then drag a footprint in the canvas to move it, or
+nudge the selected one (5 cm, 5°) with the buttons; add a stride after it (a footstep of each
+side, halfway between their neighbours) or delete the stride it starts (it and the next
+footstep), so that the feet still alternate. The walk is re-planned from the edited footsteps at
+once (the path and duration shown follow). Every edit is one document command, so Ctrl+Z undoes
+it; the plan lives in the document's ``extras["walk_plans"]`` (:mod:`jackpy.locomotion.walk_plan`)
+and is saved with it. "Bake" writes the walk as a motion file (baked frames, on a copy of the
+figure). The imgui drawing only calls :func:`plan_to`, :func:`move_footstep`, :func:`add_stride`,
+:func:`delete_stride`, :func:`press`, :func:`drag_to`, :func:`release` and :func:`bake`, which
+tests drive headless or through the window.
 """
 
 from __future__ import annotations
