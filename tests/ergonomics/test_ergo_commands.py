@@ -121,12 +121,13 @@ def test_analyze_with_ergonomics_report_json_csv(tmp_path, capsys):
     assert ergo["posture"] == "desk.button"
     assert set(ergo["methods"]) == {"rula", "reba", "owas", "niosh", "lowback", "capable"}
     # RULA scores the worse arm (Table A, then the sum of its parts); the reaching right arm was
-    # assessed in its reach posture (not hanging: its lower-arm score differs from the free left's)
+    # assessed in its reach posture (not hanging: its part scores differ from the free left arm's)
     ws = ergo["methods"]["rula"]["worksheet"]
     arms = ws["arms"]
     key = {s: (a["table_a"], a["upper_arm"] + a["lower_arm"] + a["wrist"] + a["wrist_twist"]) for s, a in arms.items()}
     assert key[ws["side"]] == max(key.values())
-    assert (arms["right"]["upper_arm"], arms["right"]["lower_arm"]) != (arms["left"]["upper_arm"], arms["left"]["lower_arm"])
+    parts = ("upper_arm", "lower_arm", "wrist", "wrist_twist")
+    assert [arms["right"][k] for k in parts] != [arms["left"][k] for k in parts]
     rows = [r for r in csv.DictReader((out / "results.csv").open()) if r["analysis"] == "ergonomics"]
     scores = {r["target"]: r["value"] for r in rows if r["metric"] == "score"}
     assert float(scores["rula"]) == ergo["methods"]["rula"]["score"]
