@@ -278,8 +278,8 @@ class FileDialog:
         if (imgui.button(ok_label) or typed) and chosen is None:
             chosen = self.accept()
         imgui.same_line()
-        if imgui.button("Cancel"):
-            self.request = None
+        if imgui.button("Cancel") or imgui.is_key_pressed(imgui.Key.escape, False):
+            self.request = None  # Escape is Cancel
         if self.replace is not None:
             imgui.same_line()
             imgui.text_colored((1.0, 0.8, 0.3, 1.0), f"{self.replace.name} exists: Replace overwrites it")

@@ -120,8 +120,9 @@ def _draw_confirm(app: "App", ui: "UiState") -> None:
     if imgui.begin_popup_modal(QUIT_PROMPT, None, imgui.WindowFlags_.always_auto_resize)[0]:
         imgui.text(f"Save the changes to {app.doc.title.lstrip('*')} before quitting?")
         for label, choice in (("Save", "save"), ("Discard", "discard"), ("Cancel", "cancel")):
-            if imgui.button(label):
-                quit_choice(app, ui, choice)
+            pressed = imgui.button(label)
+            if pressed or (choice == "cancel" and imgui.is_key_pressed(imgui.Key.escape, False)):
+                quit_choice(app, ui, choice)  # Escape is Cancel
                 imgui.close_current_popup()
             imgui.same_line()
         imgui.new_line()
@@ -138,7 +139,7 @@ def _draw_recovery(app: "App", ui: "UiState") -> None:
     if imgui.begin_popup_modal("Recover", None, imgui.WindowFlags_.always_auto_resize)[0]:
         imgui.text("jackpy did not close cleanly last time.")
         imgui.text(f"Recover the autosaved scene from {ui.recovery_offer}?")
-        if imgui.button("Recover"):
+        if imgui.button("Recover") or imgui.is_key_pressed(imgui.Key.enter, False):  # Enter: the safe answer
             run_reporting(app, lambda: session.recover(app, Path(ui.recovery_offer)))
             ui.recovery_offer = None
             imgui.close_current_popup()
