@@ -1,9 +1,7 @@
 """The file dialog's logic without a window: start folders, listing, names resolved against the
 folder, Replace before overwriting, and when the desktop's dialog is used."""
 
-import os
 import stat
-from pathlib import Path
 
 from jackpy.ui.file_dialog import FileDialog, FileRequest, list_folder, native_available, resolve_choice, start_folder
 
