@@ -96,7 +96,39 @@ def file_chosen(app: "App", ui: "UiState", request: FileRequest, path: Path) -> 
     if request.kind == "save_as" and ui.quit_after_save and ok and not app.dirty:
         ui.quit_confirmed = ui.quit_requested = True
     ui.quit_after_save = False
+    then, ui.after_save = ui.after_save, None
+    if request.kind == "save_as" and then is not None and ok and not app.dirty:
+        then()
     return ok
+
+
+def unless_unsaved(app: "App", ui: "UiState", words: str, action: Callable[[], None]) -> None:
+    """Run ``action`` now when nothing is unsaved, else ask Save / Discard / Cancel first
+    (``words`` say what the action does: "opening another scene")."""
+    if not app.dirty:
+        action()
+        return
+    ui.pending, ui.confirm = (words, action), "unsaved"
+
+
+def unsaved_choice(app: "App", ui: "UiState", choice: str) -> None:
+    """The answer to the ``"unsaved"`` prompt: ``"save"`` (save, then go on; Save-as first for an
+    unnamed document), ``"discard"`` (go on without saving), ``"cancel"`` (keep working)."""
+    from jackpy.ui import session
+
+    pending, ui.pending, ui.confirm = ui.pending, None, None
+    if pending is None or choice == "cancel":
+        return
+    action = pending[1]
+    if choice == "save":
+        if app.session_path is None:
+            ui.after_save = action
+            ask_file(app, ui, "save_as")
+            return
+        run_reporting(app, lambda: session.save_session(app, app.session_path))
+        if app.dirty:  # the save failed (reported): keep the work, do nothing else
+            return
+    action()
 
 
 def save(app: "App", ui: "UiState") -> None:
@@ -117,14 +149,20 @@ def open_recent(app: "App", ui: "UiState", path: str) -> None:
         app.info(f"error: {path} no longer exists; removed from the recent files")
         app.preferences.forget_recent(path)
         return
-    run_reporting(app, lambda: session.open_session(app, Path(path)))
+    unless_unsaved(app, ui, f"opening {Path(path).name}",
+                   lambda: run_reporting(app, lambda: session.open_session(app, Path(path))))
 
 
 # ---------------------------------------------------------------------- the table
 def _new(app: "App", ui: "UiState") -> None:
     from jackpy.ui import session
 
-    app.command("new scene", lambda: session.new_scene(app), structural=True)
+    unless_unsaved(app, ui, "starting a new scene",
+                   lambda: app.command("new scene", lambda: session.new_scene(app), structural=True))
+
+
+def _open(app: "App", ui: "UiState") -> None:
+    unless_unsaved(app, ui, "opening another scene", lambda: ask_file(app, ui, "open"))
 
 
 def _quit(app: "App", ui: "UiState") -> None:
@@ -178,7 +216,7 @@ def commands(panel_titles: list[str]) -> list[Command]:
     literal, gizmo = _setting("literal_grab"), _setting("gizmo_local")
     table = [
         Command("File", "New", _new),
-        Command("File", "Open...", lambda app, ui: ask_file(app, ui, "open"), "Ctrl+O"),
+        Command("File", "Open...", _open, "Ctrl+O"),
         Command("File", "Save", save, "Ctrl+S"),
         Command("File", "Save as...", lambda app, ui: ask_file(app, ui, "save_as"), "Ctrl+Shift+S"),
         Command("File", "Import CAD...", lambda app, ui: ask_file(app, ui, "import"), separator_before=True),

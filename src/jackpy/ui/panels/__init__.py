@@ -74,7 +74,12 @@ class UiState:
     quit_after_save: bool = False
     """The Save-as prompt was opened by the quit prompt's Save: quit once it saved."""
     confirm: str | None = None
-    """An open confirmation: ``"quit"`` (Save / Discard / Cancel of unsaved changes)."""
+    """An open confirmation of unsaved changes (Save / Discard / Cancel): ``"quit"``, or
+    ``"unsaved"`` before New, Open or Open Recent (the action waits in :attr:`pending`)."""
+    pending: tuple[str, Callable[[], None]] | None = None
+    """What waits for the ``"unsaved"`` answer: (what it does, in words; the action)."""
+    after_save: Callable[[], None] | None = None
+    """The Save-as prompt was opened by the ``"unsaved"`` prompt's Save: run this once it saved."""
     recovery_offer: str | None = None
     """A recovery file found at start-up, offered once."""
     import_units: str = "m"

@@ -35,6 +35,7 @@ def draw(app: "App", ui: "UiState") -> None:
         cmds.file_chosen(app, ui, *answer)
     elif not ui.files.active:
         ui.quit_after_save = False  # the Save-as of the quit prompt was cancelled
+        ui.after_save = None  # ... or of the unsaved-changes prompt before New / Open
     _draw_recovery(app, ui)
     _draw_confirm(app, ui)
     ui.palette.draw(app, ui, table)
@@ -113,16 +114,25 @@ def quit_choice(app: "App", ui: "UiState", choice: str) -> None:
         ui.quit_confirmed = ui.quit_requested = True
 
 
+UNSAVED_PROMPT = "Unsaved changes##unsaved"
+
+
 def _draw_confirm(app: "App", ui: "UiState") -> None:
-    if ui.confirm != "quit":
+    from jackpy.ui.commands import unsaved_choice
+
+    if ui.confirm == "quit":
+        title, doing, answer = QUIT_PROMPT, "quitting", quit_choice
+    elif ui.confirm == "unsaved" and ui.pending is not None:
+        title, doing, answer = UNSAVED_PROMPT, ui.pending[0], unsaved_choice
+    else:
         return
-    imgui.open_popup(QUIT_PROMPT)
-    if imgui.begin_popup_modal(QUIT_PROMPT, None, imgui.WindowFlags_.always_auto_resize)[0]:
-        imgui.text(f"Save the changes to {app.doc.title.lstrip('*')} before quitting?")
+    imgui.open_popup(title)
+    if imgui.begin_popup_modal(title, None, imgui.WindowFlags_.always_auto_resize)[0]:
+        imgui.text(f"Save the changes to {app.doc.title.lstrip('*')} before {doing}?")
         for label, choice in (("Save", "save"), ("Discard", "discard"), ("Cancel", "cancel")):
             pressed = imgui.button(label)
             if pressed or (choice == "cancel" and imgui.is_key_pressed(imgui.Key.escape, False)):
-                quit_choice(app, ui, choice)  # Escape is Cancel
+                answer(app, ui, choice)  # Escape is Cancel
                 imgui.close_current_popup()
             imgui.same_line()
         imgui.new_line()
