@@ -17,18 +17,10 @@ put on its bound; the kernel gives the derivative from inside the range (tested)
 from __future__ import annotations
 
 import math
-import os
 
 import numpy as np
 
-try:
-    if os.environ.get("JACKPY_NO_JIT"):
-        raise ImportError("disabled by JACKPY_NO_JIT")
-    import numba
-except ImportError:  # pragma: no cover - numba is optional
-    numba = None
-
-AVAILABLE = numba is not None
+from jackpy.peabody.kinematics_jit import AVAILABLE, numba  # the one numba switch (JACKPY_NO_JIT)
 #: a joint overflows its goal only by more than rounding (radians): at the range's ends every joint
 #: lands on its limit and the derivative stays the inner one-sided derivative (the reference's strict
 #: test can clamp joints by an ulp there and give zero, which would pin an IK variable at its bound)

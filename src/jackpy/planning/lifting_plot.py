@@ -17,6 +17,7 @@ import numpy as np
 from PIL import Image, ImageDraw, ImageFont
 
 from jackpy.analysis.strength import joint_world_positions
+from jackpy.analysis.ticks import nice_ticks
 from jackpy.peabody.model import Figure
 from jackpy.planning.lifting import ADDED_JOINT, AVAILABLE_TORQUE, PULL_BACK, REDUCING_MOMENT, LiftResult
 
@@ -33,17 +34,6 @@ def _font(size: int) -> ImageFont.ImageFont:
         return ImageFont.load_default(size=size)
     except TypeError:  # Pillow without FreeType: the fixed bitmap font
         return ImageFont.load_default()
-
-
-def nice_ticks(lo: float, hi: float, n: int = 5) -> np.ndarray:
-    """Round tick values covering [lo, hi] with about ``n`` steps of 1, 2 or 5 × 10^k."""
-    span = hi - lo if hi > lo else 1.0
-    step = 10 ** np.floor(np.log10(span / n))
-    for m in (1, 2, 5, 10):
-        if span / (step * m) <= n:
-            step *= m
-            break
-    return np.arange(np.ceil(lo / step) * step, hi + step * 1e-9, step)
 
 
 class Panel:

@@ -8,19 +8,11 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from jackpy.analysis.ticks import nice_ticks
+
 PASS_COLOUR = "#2e8b57"
 FAIL_COLOUR = "#d62728"
 _W, _H, _M = 560, 400, 56
-
-
-def _ticks(lo: float, hi: float, n: int = 5) -> np.ndarray:
-    span = hi - lo if hi > lo else 1.0
-    step = 10 ** np.floor(np.log10(span / n))
-    for m in (1, 2, 5, 10):
-        if span / (step * m) <= n:
-            step *= m
-            break
-    return np.arange(np.ceil(lo / step) * step, hi + step * 1e-9, step)
 
 
 def scatter(x: np.ndarray, y: np.ndarray, passed: np.ndarray, title: str, xlabel: str, ylabel: str,
@@ -81,11 +73,11 @@ def _head(title: str) -> str:
 def _axes(lo: np.ndarray, hi: np.ndarray, xlabel: str, ylabel: str) -> list[str]:
     x0, x1, y0, y1 = _M, _W - _M / 2, _H - _M, _M * 0.7
     out = [f'<rect x="{x0}" y="{y1}" width="{x1 - x0}" height="{y0 - y1}" fill="none" stroke="#888"/>']
-    for t in _ticks(lo[0], hi[0]):
+    for t in nice_ticks(lo[0], hi[0]):
         a = x0 + (t - lo[0]) / (hi[0] - lo[0]) * (x1 - x0)
         out.append(f'<line x1="{a:.1f}" y1="{y0}" x2="{a:.1f}" y2="{y0 + 4}" stroke="#888"/>'
                    f'<text x="{a:.1f}" y="{y0 + 16}" text-anchor="middle">{t:g}</text>')
-    for t in _ticks(lo[1], hi[1]):
+    for t in nice_ticks(lo[1], hi[1]):
         b = y0 - (t - lo[1]) / (hi[1] - lo[1]) * (y0 - y1)
         out.append(f'<line x1="{x0 - 4}" y1="{b:.1f}" x2="{x0}" y2="{b:.1f}" stroke="#888"/>'
                    f'<text x="{x0 - 6}" y="{b + 4:.1f}" text-anchor="end">{t:g}</text>')

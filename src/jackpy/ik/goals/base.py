@@ -18,7 +18,6 @@ from __future__ import annotations
 
 import inspect
 import math
-import os
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, ClassVar
@@ -26,6 +25,7 @@ from typing import TYPE_CHECKING, Any, ClassVar
 import numpy as np
 
 from jackpy.errors import FigureError
+from jackpy.peabody.kinematics_jit import numba  # the one numba switch (JACKPY_NO_JIT)
 
 if TYPE_CHECKING:
     from jackpy.peabody.kinematics import FKResult, Kinematics
@@ -64,14 +64,7 @@ def _site_rows(mom, ang, moved, vectors, weights, point, out):  # pragma: no cov
             out[3 * j, c], out[3 * j + 1, c], out[3 * j + 2, c] = m * r0, m * r1, m * r2
 
 
-try:
-    if os.environ.get("JACKPY_NO_JIT"):
-        raise ImportError("disabled by JACKPY_NO_JIT")
-    import numba
-
-    _site_rows_compiled = numba.njit(cache=True, nogil=True)(_site_rows)
-except ImportError:  # pragma: no cover - numba is optional
-    _site_rows_compiled = None
+_site_rows_compiled = numba.njit(cache=True, nogil=True)(_site_rows) if numba is not None else None
 
 
 def skews(vectors: np.ndarray) -> np.ndarray:
