@@ -75,8 +75,25 @@ def run(args: argparse.Namespace) -> int:
         out["motion"] = motion.to_dict()
         if motion.planned:
             motion_file.save(motion.motion_file(args.fps, human=args.figure), Path(args.output) / "reach.motion.json")
+    note = _write_picture(wp.env, figure, s.result.posture, target, Path(args.output) / "reach.png")
+    out["picture"] = "reach.png" if note is None else None
     atomic_write_text(Path(args.output) / "reach.json", json.dumps(out, indent=1) + "\n")
     print(f"{args.figure} {args.target}: {s.describe()}")
+    if note is not None:
+        print(f"  no picture: {note}")
     if motion is not None:
         print(f"  {motion.describe()}")
     return 0
+
+
+def _write_picture(env, figure, posture, target, path) -> str | None:
+    """The final posture's picture at ``path``; the reason when there is none (no offscreen GL)."""
+    from jackpy.atomic import atomic_write_bytes
+    from jackpy.errors import JackpyError
+    from jackpy.planning.stage_picture import posture_picture
+
+    try:
+        atomic_write_bytes(path, posture_picture(env, figure, posture, target))
+    except JackpyError as exc:
+        return str(exc)
+    return None
