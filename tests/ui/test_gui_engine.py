@@ -136,7 +136,12 @@ def test_save_as_through_the_browser_then_open_recent(request, tmp_path, monkeyp
         ctx.set_ref(MENU)
         ctx.menu_click("File/New")
         ctx.yield_(2)
-        assert app.session_path is None
+        assert win.ui.confirm == "unsaved" and Path(app.session_path) == saved  # New asks first
+        ctx.set_ref("//Unsaved changes##unsaved")
+        ctx.item_click("Discard")
+        ctx.yield_(2)
+        assert win.ui.confirm is None and app.session_path is None and not app.dirty
+        ctx.set_ref(MENU)
         ctx.menu_click("File/Open Recent/###recent0")
         ctx.yield_(2)
 

@@ -47,6 +47,9 @@ def test_new_asks_first_and_cancel_keeps_the_work(tmp_path, monkeypatch):
     _run(app, ui, "New")
     unsaved_choice(app, ui, "discard")
     assert ui.confirm is None and not np.isclose(_elbow(app), bent)  # the default scene again
+    assert not app.dirty  # ... with nothing to save: opening another scene now asks nothing
+    app.undo()
+    assert np.isclose(_elbow(app), bent) and app.dirty  # New is undoable
 
 
 def test_open_with_a_named_document_saves_then_asks_for_the_file(tmp_path, monkeypatch):

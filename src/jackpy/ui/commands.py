@@ -157,8 +157,11 @@ def open_recent(app: "App", ui: "UiState", path: str) -> None:
 def _new(app: "App", ui: "UiState") -> None:
     from jackpy.ui import session
 
-    unless_unsaved(app, ui, "starting a new scene",
-                   lambda: app.command("new scene", lambda: session.new_scene(app), structural=True))
+    def new() -> None:
+        app.command("new scene", lambda: session.new_scene(app), structural=True)
+        app.doc.dirty = False  # the default scene holds nothing to save (Undo brings the old one back)
+
+    unless_unsaved(app, ui, "starting a new scene", new)
 
 
 def _open(app: "App", ui: "UiState") -> None:
