@@ -169,7 +169,8 @@ def test_views_undo_quit_prompt_and_crash_recovery(scene, tmp_path):
     finally:
         wb.kill()  # kill -9: no clean exit, the recovery file stays
     assert recovery.is_file()
-    shutil.copy(recovery, tmp_path / "recovery_seen.env")  # kept for a look after a failure
+    shutil.copy(recovery, tmp_path / "recovery_seen.env")  # kept (with its surfaces) to compare with
+    shutil.copytree(recovery.parent / "recovery_psurf", tmp_path / "recovery_psurf")
 
     wb = Workbench(scene, home)
     try:
@@ -179,5 +180,22 @@ def test_views_undo_quit_prompt_and_crash_recovery(scene, tmp_path):
         assert wait_for(lambda: wb.title == "*scene.env \u2014 jackpy", "the recovered work", timeout=30)
         recovered = wb.shot(3.0)
         assert differs(recovered, offer) > 1.0  # the prompt closed (the view no longer dimmed)
+        original = _figure_places(scene)
+        wb.key("ctrl+s")  # the recovered work saved over the scene it is the autosave of
+        assert wait_for(lambda: wb.title == "scene.env — jackpy", "the save", timeout=30)
     finally:
         wb.kill()
+    saved, autosaved = _figure_places(scene), _figure_places(tmp_path / "recovery_seen.env")
+    assert saved.keys() == autosaved.keys() == original.keys()
+    moved = [n for n in saved if not np.allclose(original[n], autosaved[n], atol=1e-4)]
+    assert moved  # the autosave holds the drag ...
+    for n in saved:  # ... and the work restored is exactly what was autosaved
+        assert np.allclose(saved[n], autosaved[n], atol=1e-6), n
+
+
+def _figure_places(path) -> dict[str, np.ndarray]:
+    """World location (4x4, flattened) and displacements of every figure with joints in the session."""
+    from jackpy.document import session as doc_session
+
+    env, _ = doc_session.load_session(path)
+    return {n: np.concatenate([f.location.ravel(), f.q]) for n, f in env.figures.items() if f.joints}

@@ -269,14 +269,17 @@ class Window:
             self._title = title
 
     def run(self, autosave: Callable[[], None] | None = None) -> None:
-        """Run frames until the window is closed; ``autosave`` is called every ``settings.autosave_s``."""
+        """Run frames until the window is closed; ``autosave`` is called every ``settings.autosave_s``
+        while there are unsaved changes, and never while a crash's recovery file is still offered
+        (the autosave would overwrite the work the offer is about)."""
         last = time.monotonic()
         while not self.should_close:
             if self.idle:
                 glfw.wait_events_timeout(IDLE_WAIT_S)  # wakes on input
             self.frame()
             if autosave is not None and time.monotonic() - last >= self.app.settings.autosave_s:
-                autosave()
+                if self.app.dirty and self.ui.recovery_offer is None:
+                    autosave()
                 last = time.monotonic()
 
     def close(self) -> None:
