@@ -18,6 +18,18 @@ SIZE = 320
 MID_TORSO = SPINE_SEGMENTS[1:-2]  # L5 to T3: the crotch, the neck base and the shoulders' slope left out
 
 
+@pytest.fixture(scope="module")
+def egl_context():
+    import moderngl
+
+    try:
+        ctx = moderngl.create_standalone_context(require=330, backend="egl")
+    except Exception as exc:  # no EGL device at all: nothing to render with
+        pytest.skip(f"no EGL OpenGL context available: {exc}")
+    yield ctx
+    ctx.release()
+
+
 @pytest.fixture
 def renderer(egl_context):
     r = offscreen_renderer(SIZE, SIZE, ctx=egl_context)
