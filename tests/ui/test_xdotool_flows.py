@@ -169,8 +169,8 @@ def test_views_undo_quit_prompt_and_crash_recovery(scene, tmp_path):
     finally:
         wb.kill()  # kill -9: no clean exit, the recovery file stays
     assert recovery.is_file()
-    shutil.copy(recovery, tmp_path / "recovery_seen.env")  # kept (with its surfaces) to compare with
-    shutil.copytree(recovery.parent / "recovery_psurf", tmp_path / "recovery_psurf")
+    seen = home / "seen"  # a copy beside the recovery folder: its relative references still resolve
+    shutil.copytree(recovery.parent, seen)
 
     wb = Workbench(scene, home)
     try:
@@ -185,7 +185,7 @@ def test_views_undo_quit_prompt_and_crash_recovery(scene, tmp_path):
         assert wait_for(lambda: wb.title == "scene.env — jackpy", "the save", timeout=30)
     finally:
         wb.kill()
-    saved, autosaved = _figure_places(scene), _figure_places(tmp_path / "recovery_seen.env")
+    saved, autosaved = _figure_places(scene), _figure_places(seen / "recovery.env")
     assert saved.keys() == autosaved.keys() == original.keys()
     moved = [n for n in saved if not np.allclose(original[n], autosaved[n], atol=1e-4)]
     assert moved  # the autosave holds the drag ...
@@ -197,5 +197,13 @@ def _figure_places(path) -> dict[str, np.ndarray]:
     """World location (4x4, flattened) and displacements of every figure with joints in the session."""
     from jackpy.document import session as doc_session
 
-    env, _ = doc_session.load_session(path)
+    library = os.environ.get("JACKPY_LIBRARY")
+    os.environ["JACKPY_LIBRARY"] = str(session.default_scene()[1])  # where the default scene's figures are
+    try:
+        env, _ = doc_session.load_session(path)
+    finally:
+        if library is None:
+            del os.environ["JACKPY_LIBRARY"]
+        else:
+            os.environ["JACKPY_LIBRARY"] = library
     return {n: np.concatenate([f.location.ravel(), f.q]) for n, f in env.figures.items() if f.joints}
