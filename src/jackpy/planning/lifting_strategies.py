@@ -22,7 +22,8 @@ DAMPING = 0.02
 def project_to_cone(v: np.ndarray, axis: np.ndarray, beta: float) -> np.ndarray:
     """Unit direction: ``v`` normalised when within ``beta`` radians of unit ``axis``, else ``v``
     projected onto the cone ``cos(beta) axis + sin(beta) w`` with ``w`` the unit part of ``v``
-    normal to the axis (``axis`` itself when ``v`` has no such part and points away)."""
+    normal to the axis. When ``v`` points straight away from the axis every direction on the cone is
+    equally near; ``w`` is then a fixed unit normal of the axis, so the result stays on the cone."""
     n = float(np.linalg.norm(v))
     if n < 1e-12:
         return axis.copy()
@@ -31,10 +32,13 @@ def project_to_cone(v: np.ndarray, axis: np.ndarray, beta: float) -> np.ndarray:
     if c >= np.cos(beta):
         return d
     perp = d - c * axis
+    perp -= (perp @ axis) * axis  # once more: the first subtraction leaves rounding along the axis
     pn = float(np.linalg.norm(perp))
-    if pn < 1e-12:
-        return axis.copy()
-    return np.cos(beta) * axis + np.sin(beta) * perp / pn
+    if pn < 1e-9:
+        perp = np.cross(axis, np.eye(3)[int(np.argmin(np.abs(axis)))])
+        pn = float(np.linalg.norm(perp))
+    out = np.cos(beta) * axis + np.sin(beta) * perp / pn
+    return out / np.linalg.norm(out)
 
 
 def weighted_pinv(jac: np.ndarray, weights: np.ndarray) -> np.ndarray:
