@@ -112,3 +112,50 @@ def test_errors_toast_and_status_bar_reports_an_unmet_goal(request):
         assert win.rate.fps > 0
     finally:
         win.close()
+
+
+def _without_windows(text, titles):
+    """An imgui ini with the ``[Window][TITLE]`` sections of ``titles`` left out (a layout saved
+    before those panels existed)."""
+    blocks, keep = text.split("\n\n"), []
+    for block in blocks:
+        if not any(block.startswith(f"[Window][{t}]") for t in titles):
+            keep.append(block)
+    return "\n\n".join(keep)
+
+
+def test_panels_an_old_saved_layout_does_not_know_dock_in_their_area(request, tmp_path):
+    """A layout saved before a panel existed: the panel docks as a tab of its default area on
+    first appearance (a new bottom panel too), never floating over the figure; a panel the
+    user floated stays floating."""
+    if in_child_process(request):
+        return
+    env, _ = session.default_scene()
+    ini = tmp_path / "layout.ini"
+    win = Window(App(env), "jackpy layout", (1280, 800), visible=False, layout_file=ini)
+    win.frame()
+    right = imgui.internal.find_window_by_name("Goals").dock_id
+    bottom = imgui.internal.find_window_by_name("Log").dock_id
+    win.close()
+    new = ("Step editor", "Preferences", "Ergonomics")  # right, right, bottom by default
+    old = _without_windows(ini.read_text(), new)
+    old = old.replace("[Window][Script]\nCollapsed=0\nDockId=0x00000006",  # the user floated it
+                      "[Window][Script]\nPos=500,300\nSize=200,150\nCollapsed=0")
+    assert all(f"[Window][{t}]" not in old for t in new) and "[Window][Script]" in old
+    ini.write_text(old)
+    win = Window(App(env), "jackpy layout", (1280, 800), visible=False, layout_file=ini)
+    try:
+        for title in (*new, "Script"):
+            win.ui.open_panels[title] = True
+        for _ in range(3):
+            win.frame()
+        r = win.view_rect
+        for title, node in zip(new, (right, right, bottom)):
+            w = imgui.internal.find_window_by_name(title)
+            assert w is not None and w.dock_id == node, title  # a tab beside its area's panels
+            if window_rect(title) is not None:  # (the tab shown)
+                assert not overlaps(window_rect(title), r), title
+        assert imgui.internal.find_window_by_name("Script").dock_id == 0  # floated by the user: kept
+    finally:
+        win.close()
+    assert "[Window][Step editor]" in ini.read_text()  # known from now on

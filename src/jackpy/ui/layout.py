@@ -6,6 +6,12 @@ timeline, log and ergonomics at the bottom as tabs; the 3-D view fills the centr
 panel covers. Every panel title gets its place when the layout is built, so a panel opened later
 docks into its tab there, never over the figure.
 
+A saved layout from before a panel existed does not know that panel (imgui would float it over
+the figure): on the first frame each panel the saved file does not name is docked into its default
+area, as a tab beside a panel of that area the file has docked, else into a new node split off the
+central one on that side (:meth:`Layout.begin`). A panel the user floated is named (undocked) and
+stays where the user left it.
+
 The layout is saved per user in ``$JACKPY_HOME/layout.ini`` (default ``~/.jackpy/layout.ini``,
 imgui's own ini format, written by imgui every few seconds and at exit), never in the working
 folder; View → Reset layout rebuilds the default.
@@ -14,6 +20,7 @@ folder; View → Reset layout rebuilds the default.
 from __future__ import annotations
 
 import os
+import re
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -53,6 +60,9 @@ class Layout:
     def __init__(self, path: Path | None = None) -> None:
         self.path = path or layout_path()
         self.reset_requested = not self.path.exists()
+        self.saved = {} if self.reset_requested else saved_windows(self.path)
+        """The windows the saved layout names, each with its dock node id (None: floating)."""
+        self._placed = False
         self.path.parent.mkdir(parents=True, exist_ok=True)
         self._ini = str(self.path)  # imgui keeps the pointer: the string must live as long as the context
         io = imgui.get_io()
@@ -72,6 +82,9 @@ class Layout:
         if self.reset_requested:
             build_default(dock_id, titles)
             self.reset_requested = False
+        elif not self._placed:
+            dock_unknown(dock_id, [t for t in titles if t not in self.saved], self.saved)
+        self._placed = True
         imgui.dock_space_over_viewport(dock_id, vp, imgui.DockNodeFlags_.passthru_central_node)
         node = imgui.internal.dock_builder_get_central_node(dock_id)
         if node is not None:
@@ -88,6 +101,59 @@ class Layout:
 def area_of(title: str) -> str:
     """The default area of a panel."""
     return AREAS.get(title, RIGHT)
+
+
+_WINDOW = re.compile(r"^\[Window\]\[(.*)\]\s*$")
+_DOCK_ID = re.compile(r"^DockId=0x([0-9A-Fa-f]+)")
+
+
+def saved_windows(path: Path) -> dict[str, int | None]:
+    """The windows a saved imgui ini names (``[Window][TITLE]``), each with the dock node it is
+    docked in (``DockId=0x...``), None for a floating one; {} for an unreadable file."""
+    try:
+        lines = path.read_text(encoding="utf-8", errors="replace").splitlines()
+    except OSError:
+        return {}
+    out: dict[str, int | None] = {}
+    current: str | None = None
+    for line in lines:
+        if line.startswith("["):
+            m = _WINDOW.match(line)
+            current = m.group(1) if m else None
+            if current is not None:
+                out[current] = None
+        elif current is not None and (d := _DOCK_ID.match(line)):
+            out[current] = int(d.group(1), 16)
+    return out
+
+
+_SIDE = {LEFT: (imgui.Dir.left, LEFT_FRACTION), RIGHT: (imgui.Dir.right, RIGHT_FRACTION),
+         BOTTOM: (imgui.Dir.down, BOTTOM_FRACTION)}
+
+
+def dock_unknown(dock_id: int, titles: list[str], saved: dict[str, int | None]) -> None:
+    """Dock each window of ``titles`` (which the saved layout ``saved`` does not know) into its
+    default area of the live dockspace ``dock_id``: beside a window of the same area that
+    ``saved`` docks, else in a node split off the central node towards that area (made once per
+    area, shared by the area's other new windows). Call before the windows' first ``begin``."""
+    internal = imgui.internal
+    made: dict[str, int] = {}
+    for title in titles:
+        area = area_of(title)
+        node = next((n for t, n in saved.items() if n is not None and area_of(t) == area
+                     and t not in titles and internal.dock_builder_get_node(n) is not None), None)
+        if node is None:
+            node = made.get(area)
+        if node is None:
+            central = internal.dock_builder_get_central_node(dock_id)
+            if central is None:
+                continue  # no dockspace yet (nothing was saved): the default layout docks it
+            direction, fraction = _SIDE[area]
+            node, _rest = _split(central.id, direction, fraction)
+            made[area] = node
+        internal.dock_builder_dock_window(title, node)
+    if titles:
+        internal.dock_builder_finish(dock_id)
 
 
 def build_default(dock_id: int, titles: list[str]) -> None:
