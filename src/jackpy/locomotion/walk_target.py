@@ -5,8 +5,8 @@
   the path's end);
 - an **object** (its name or the object): stand in front of it, on the side nearest the start, at
   the standing distance ``r + STAND_GAP`` from its floor footprint (``r``: the figure's half-width
-  plus the planner's margin, the inflation of :mod:`.floor_plan`), facing the nearest point of the
-  footprint (square to the edge in front of the figure);
+  plus the planner's margin, the inflation of :mod:`.floor_plan`), square to an edge at least
+  ``CORNER`` in from the footprint's corners where the edge allows, facing the footprint;
 - a **site**: the same ring round the site's object, at its point nearest the site, facing the
   site; a site standing clear of every obstacle (farther than the standing distance from its
   object) is walked to, facing it from the path.
@@ -22,7 +22,7 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-from shapely.geometry import Point
+from shapely.geometry import MultiPoint, Point
 from shapely.ops import nearest_points, unary_union
 
 from jackpy.errors import JackpyError
@@ -32,6 +32,8 @@ STAND_GAP = 0.02
 #: spacing of the candidate standing points along the ring (m) and how many are tried
 RING_SPACING = 0.05
 TRIES = 8
+#: an object is stood in front of square to an edge, at least this far in from its corners (m)
+CORNER = 0.15
 
 
 @dataclass
@@ -105,8 +107,14 @@ def standing_goals(figure, target, objects: list, start, facing: float | None = 
     s = np.asarray(start, dtype=float)
     if look is not None:  # nearest the site
         cands.sort(key=lambda c: (float(np.linalg.norm(c - look)), float(np.linalg.norm(c - s))))
-    else:  # nearest the object (2 cm bands: the ring round it), then the side nearest the start
-        cands.sort(key=lambda c: (int(foot.distance(Point(*c)) / 0.02), float(np.linalg.norm(c - s))))
+    else:  # nearest the object (2 cm bands: the ring round it), square to an edge, nearest the start
+        corners = MultiPoint(list(foot.exterior.coords)) if hasattr(foot, "exterior") else None
+
+        def off_corner(c: np.ndarray) -> bool:
+            near = nearest_points(foot, Point(*c))[0]
+            return corners is not None and near.distance(corners) < CORNER
+
+        cands.sort(key=lambda c: (int(foot.distance(Point(*c)) / 0.02), off_corner(c), float(np.linalg.norm(c - s))))
     out = []
     for c in cands[:TRIES]:
         if look is not None:

@@ -228,11 +228,80 @@ class Ratchet(Command):
 
 @dataclass
 class WalkTo(Command):
-    """Walk to a place: needs the walking issue (13); until it lands the command fails saying so."""
+    """Walk to a place (issue 13): an object (stand in front of it, facing it), a site (stand
+    beside it, facing it), another agent (stand ``AGENT_DISTANCE`` before them, facing them) or a
+    floor point ``(x, z)``; the path goes round the scene's objects. One walk motion on the
+    timeline; ``facing_deg`` (about +y, 0 faces +z) overrides the end heading."""
 
-    place: str = ""
+    place: str | tuple = ""
+    facing_deg: float | None = None
 
     def expand(self, sim):
-        return [st.Fail(self.agent, f"Walk to {self.place}",
-                        reason=f"{self.agent} cannot walk to {self.place}: walking is not available yet "
-                               "(issue 13); place the agent with a stand instead")]
+        if isinstance(self.place, str):
+            ref = sim.kb.resolve(self.place)
+            target = ref if ref.agent else (ref.obj if ref.site is None else f"{ref.obj}.{ref.site}")
+        else:
+            target = tuple(float(v) for v in self.place)
+        return [WalkStep(self.agent, self.text, target=target, facing_deg=self.facing_deg)]
+
+    @property
+    def text(self):
+        return f"Walk to {self.place}"
+
+
+#: how far from another agent's pelvis centre a walk to that agent stops (m)
+AGENT_DISTANCE = 0.8
+#: a walk ends within this of its planned standing point (m), or it fails
+ARRIVE_TOLERANCE_M = 0.05
+
+
+@dataclass
+class WalkStep(st.Step):
+    """generate-motion of the whole figure: footsteps planned when the step starts, from where
+    the agent stands then, round the scene's objects (:func:`jackpy.locomotion.walk_target.plan`),
+    as one walk motion; it lasts the walk plus two frames (the walk's post-action, after which
+    the agent's behaviors run again)."""
+
+    target: object = None
+    facing_deg: float | None = None
+
+    def begin(self, sim, t):
+        import numpy as np
+
+        from jackpy.errors import JackpyError
+        from jackpy.locomotion import walk_target
+        from jackpy.locomotion.walk_gait import GaitParams
+        from jackpy.motion.kinds.walk import WalkMotion
+        from jackpy.tasks.kb import Ref
+
+        fig = sim.loops[self.agent].figure
+        objects = [f for n, f in sorted(sim.env.figures.items()) if n not in sim.loops and hasattr(f, "mesh")]
+        facing = None if self.facing_deg is None else float(np.radians(self.facing_deg))
+        target = self.target
+        if isinstance(target, Ref):  # another agent: a point before them, facing them
+            me = fig.site_world("pelvis", "centre")[:3, 3][[0, 2]]
+            them = sim.loops[target.obj].figure.site_world("pelvis", "centre")[:3, 3][[0, 2]]
+            d = them - me
+            n = float(np.linalg.norm(d))
+            if n <= AGENT_DISTANCE:
+                raise TaskError(f"{self.agent} is already beside {target.obj}")
+            target = tuple(them - AGENT_DISTANCE * d / n)
+            facing = float(np.arctan2(d[0], d[1])) if facing is None else facing
+        p = GaitParams.for_figure(fig)
+        try:
+            steps, _, goal = walk_target.plan(fig, p, target, objects, facing=facing)
+        except JackpyError as exc:
+            raise TaskError(f"{self.agent} cannot {self.label.lower()}: {exc}") from None
+        m = sim.timeline.add(WalkMotion.of_steps(self.agent, steps, p, t0=t, label=self.label))
+        self.run["goal"] = goal.point
+        return (m.t1 - m.t0) + 2.0 * sim.dt
+
+    def finish(self, sim, t):
+        import numpy as np
+
+        c = sim.loops[self.agent].figure.site_world("pelvis", "centre")[:3, 3]
+        err = float(np.hypot(c[0] - self.run["goal"][0], c[2] - self.run["goal"][1]))
+        self.run["error_m"] = err
+        if err > ARRIVE_TOLERANCE_M:
+            raise TaskError(f"{self.agent} stopped {err * 100:.1f} cm from where {self.label.lower()} should end")
+        return []
