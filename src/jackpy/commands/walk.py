@@ -1,7 +1,8 @@
-"""``jackpy walk SCENE --to X,Z [--facing DEG] | --path "x,z x,z ..."``: a standard human walks
-from where the scene stands it (or ``--from``), baked to a motion file (and optionally BVH);
-``--to`` plans around the scene's objects, ``--path`` follows the points as given.
-See docs/walking.md."""
+"""``jackpy walk SCENE --to X,Z | --to-object NAME[.SITE] | --path "x,z x,z ..." [--facing DEG]``:
+a standard human walks from where the scene stands it (or ``--from``), written as a motion file
+(the walk as a timeline motion, plus its baked frames; optionally BVH). ``--to`` and
+``--to-object`` plan around the scene's objects (an object: stand in front of it, facing it),
+``--path`` follows the points as given. See docs/walking.md."""
 
 from __future__ import annotations
 
@@ -45,12 +46,15 @@ def register(subparsers) -> None:
     p.add_argument("scene", metavar="SCENE", help="workplace scene (JSON; the figure starts at its stand), or -")
     g = p.add_mutually_exclusive_group(required=True)
     g.add_argument("--to", type=_point, metavar="X,Z", help="walk to this floor point (m)")
+    g.add_argument("--to-object", dest="to_object", default=None, metavar="NAME[.SITE]",
+                   help="walk to stand in front of this scene object (or beside its site), facing it")
     g.add_argument("--path", type=_path, metavar='"x,z x,z ..."', help="walk through these floor points (m)")
     p.add_argument("--facing", type=float, default=None, metavar="DEG",
                    help="heading at the end (degrees about +y, 0 faces +z; default: along the path)")
     p.add_argument("--from", dest="start", type=_point, default=None, metavar="X,Z",
                    help="start here (m; default: the scene's stand)")
     p.add_argument("--figure", default="male:50", metavar="NAME", help="standard human (male:50, female:5, ...)")
+    p.add_argument("--name", default="walker", help="the figure's name in the motion file (default walker)")
     p.add_argument("--fps", type=_fps, default=30.0, help="frame rate of the baked motion (default 30)")
     p.add_argument("-o", "--output", required=True, metavar="OUT.motion.json")
     p.add_argument("--bvh", default=None, metavar="OUT.bvh", help="also write the walk as BVH")
@@ -72,14 +76,15 @@ def run(args) -> int:
     objects = list(wp.objects.values()) if args.scene != "-" else []
     if args.start is not None:
         stand = (args.start[0], args.start[1], stand[2])
-    fig = cast.make_figure("walker", {"human": args.figure, "position": list(stand[:2]),
+    fig = cast.make_figure(args.name, {"human": args.figure, "position": list(stand[:2]),
                                       "heading_deg": float(np.degrees(stand[2]))})
     p = GaitParams.for_figure(fig)
     facing = None if args.facing is None else float(np.radians(args.facing))
-    if args.to is not None:
-        from jackpy.locomotion.walk_to import walk_to
+    if args.to is not None or args.to_object is not None:
+        from jackpy.locomotion.walk_target import plan
 
-        steps, _, _ = walk_to(fig, p, args.to, objects, facing=facing, start=stand[:2])
+        steps, _, _ = plan(fig, p, args.to if args.to is not None else args.to_object, objects, facing=facing,
+                           start=stand[:2])
     else:
         pts = [tuple(stand[:2])] + list(args.path)
         steps = footsteps.from_path(p, np.array(pts), facing=facing)

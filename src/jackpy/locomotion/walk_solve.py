@@ -160,11 +160,18 @@ def bake(figure, walk: Walk, fps: float, progress: Callable[[int, int], None] | 
 
 
 def motion_file(figure, walk: Walk, fps: float, human: str | None = None, progress=None):
-    """A :class:`~jackpy.motion.motion_file.MotionFile` of baked frames of the walk."""
+    """A :class:`~jackpy.motion.motion_file.MotionFile` of the walk: its timeline holds the walk as
+    a walk motion (:mod:`jackpy.motion.kinds.walk`) of ``figure`` cast where it stands now (so the
+    workbench plays and edits it), and the baked frames of the walk solved here."""
+    from jackpy.motion.kinds.walk import WalkMotion
     from jackpy.motion.motion_file import BakedFigure, MotionFile
     from jackpy.motion.timeline import Timeline
 
+    c = figure.site_world("pelvis", "centre")
+    heading = float(np.degrees(np.arctan2(c[0, 2], c[2, 2])))
+    tl = Timeline(cast={figure.name: {"human": human or "male:50", "position": [float(c[0, 3]), float(c[2, 3])],
+                                      "heading_deg": heading}})
+    tl.add(WalkMotion.of_steps(figure.name, walk.steps, walk.p, label="walk"))
     postures, _ = bake(figure, walk, fps, progress)
-    tl = Timeline()
     tl.duration = (len(postures) - 1) / fps
     return MotionFile(tl, fps, {figure.name: BakedFigure.from_postures(figure, postures, human)})

@@ -26,6 +26,7 @@ from shapely.geometry import MultiPoint, Point
 from shapely.ops import nearest_points, unary_union
 
 from jackpy.errors import JackpyError
+from jackpy.locomotion.walk_to import WalkError
 
 #: beyond the inflated footprint (m): the pelvis centre stands this much further from the object
 STAND_GAP = 0.02
@@ -56,14 +57,14 @@ def find_object(objects: list, name: str) -> Any:
     for o in objects:
         if o.name == name:
             return o
-    raise JackpyError(f"no object named {name!r} in the scene (objects: {', '.join(o.name for o in objects)})")
+    raise WalkError(f"no object named {name!r} in the scene (objects: {', '.join(o.name for o in objects)})")
 
 
 def site_point(obj: Any, site: str) -> np.ndarray:
     """World position (m) of ``obj``'s user site ``site``."""
     sites = obj.user_sites()
     if site not in sites:
-        raise JackpyError(f"object {obj.name!r} has no site {site!r} (sites: {', '.join(sorted(sites)) or 'none'})")
+        raise WalkError(f"object {obj.name!r} has no site {site!r} (sites: {', '.join(sorted(sites)) or 'none'})")
     return (obj.location @ sites[site].location)[:3, 3]
 
 
@@ -78,7 +79,7 @@ def standing_goals(figure, target, objects: list, start, facing: float | None = 
     if not isinstance(target, str) and not hasattr(target, "mesh"):
         v = np.asarray(target, dtype=float).ravel()
         if v.size not in (2, 3) or not np.all(np.isfinite(v)):
-            raise JackpyError(f"a walk target is a point (x, z), a site 'object.site' or an object, not {target!r}")
+            raise WalkError(f"a walk target is a point (x, z), a site 'object.site' or an object, not {target!r}")
         xz = (float(v[0]), float(v[-1]))
         return [Goal(xz, facing, "point")]
     if not isinstance(target, str):
@@ -103,7 +104,7 @@ def standing_goals(figure, target, objects: list, start, facing: float | None = 
     inner = blocked.buffer(-1e-6) if not blocked.is_empty else blocked
     cands = [c for c in cands if inner.is_empty or not inner.contains(Point(*c))]
     if not cands:
-        raise JackpyError(f"there is no room to stand beside {obj.name!r}")
+        raise WalkError(f"there is no room to stand beside {obj.name!r}")
     s = np.asarray(start, dtype=float)
     if look is not None:  # nearest the site
         cands.sort(key=lambda c: (float(np.linalg.norm(c - look)), float(np.linalg.norm(c - s))))
@@ -142,4 +143,4 @@ def plan(figure, p, target, objects: list, facing: float | None = None, start=No
             return steps, path, g
         except JackpyError as exc:
             last = exc
-    raise JackpyError(f"cannot walk to {goals[0].what}: {last}")
+    raise WalkError(f"cannot walk to {goals[0].what}: {last}")

@@ -11,12 +11,19 @@ from shapely.geometry import LineString, Point, Polygon
 from jackpy.errors import JackpyError
 
 
+class WalkError(JackpyError):
+    """A walk the scene does not allow (a goal or start inside an obstacle, no way round, a
+    target that is not there): bad input, one line, exit 2."""
+
+    exit_code = 2
+
+
 def visibility_path(start, goal, blocked: Polygon) -> np.ndarray:
     """Shortest polyline (N, 2) from ``start`` to ``goal`` avoiding the interior of ``blocked``."""
     s, g = tuple(map(float, start)), tuple(map(float, goal))
     for name, p in (("start", s), ("goal", g)):
         if not blocked.is_empty and blocked.contains(Point(p)):
-            raise JackpyError(f"the {name} point ({p[0]:.2f}, {p[1]:.2f}) lies inside an obstacle")
+            raise WalkError(f"the {name} point ({p[0]:.2f}, {p[1]:.2f}) lies inside an obstacle")
     nodes = [s, g]
     if not blocked.is_empty:
         polys = getattr(blocked, "geoms", [blocked])
@@ -47,7 +54,7 @@ def visibility_path(start, goal, blocked: Polygon) -> np.ndarray:
                     dist[j], prev[j] = nd, i
                     heapq.heappush(heap, (nd, j))
     if not np.isfinite(dist[1]):
-        raise JackpyError("no path to the goal around the obstacles")
+        raise WalkError("no path to the goal around the obstacles")
     path, k = [], 1
     while k != -1:
         path.append(nodes[k])
