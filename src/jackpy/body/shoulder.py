@@ -37,6 +37,8 @@ each one row, the angles inside at least one.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from jackpy.peabody.groups import JointGroup, register_driver
@@ -81,6 +83,11 @@ def default_twist(phi_deg: float, theta_s_deg: float) -> float:
     return phi_deg / 90.0 * theta_s_deg
 
 
+def _floats(theta: np.ndarray) -> list[float]:
+    """The three group angles as Python floats (scalar math is cheaper than numpy's for three)."""
+    return theta.tolist() if isinstance(theta, np.ndarray) else [float(v) for v in theta]
+
+
 class ShoulderDriver:
     """Group driver: (ϕ, θ, τ) radians -> clavicle (ϕ_c, θ_c) + shoulder (4 angles), radians."""
 
@@ -100,9 +107,14 @@ class ShoulderDriver:
         return cls()
 
     def __call__(self, theta: np.ndarray) -> np.ndarray:
-        phi, th, tau = np.degrees(np.asarray(theta, dtype=float))
-        phi_c, theta_c, _, theta_s = allocate(phi, th)
-        return np.radians([phi_c, theta_c, -phi_c, tau - th, phi, theta_s])
+        # scalar math (the IK runs this per evaluation; :func:`allocate` is the same formula)
+        phi_r, th_r, tau_r = _floats(theta)
+        phi = math.degrees(phi_r)
+        b1 = 0.2514 * phi + 91.076 if phi <= 131.4 else -0.035 * phi + 128.7
+        b2 = 0.21066 * phi + 92.348 if phi <= 130.0 else 120.0
+        c = math.cos(th_r)
+        phi_c = math.radians(c * b1 + (1.0 - c) * b2 - 90.0)
+        return np.array([phi_c, 0.2 * th_r, -phi_c, tau_r - th_r, phi_r, 0.8 * th_r])
 
     def batch(self, thetas: np.ndarray) -> np.ndarray:
         """(N, 3) group angles -> (N, 6) member displacements, row ``i`` equal to ``self(thetas[i])``."""
@@ -117,15 +129,16 @@ class ShoulderDriver:
         Degrees in and out cancel, so this is the derivative of the allocation in degrees. At the
         breakpoints of β₁ (ϕ = 131.4°) and β₂ (ϕ = 130°) it is the left-hand derivative.
         """
-        phi, th, _ = np.degrees(np.asarray(theta, dtype=float))
+        phi_r, th_r, _ = _floats(theta)
+        phi = math.degrees(phi_r)
         b1 = 0.2514 * phi + 91.076 if phi <= 131.4 else -0.035 * phi + 128.7
         b2 = 0.21066 * phi + 92.348 if phi <= 130.0 else 120.0
         db1 = 0.2514 if phi <= 131.4 else -0.035
         db2 = 0.21066 if phi <= 130.0 else 0.0
-        c, s = np.cos(np.radians(th)), np.sin(np.radians(th))
-        dphi_c = (c * db1 + (1.0 - c) * db2, -np.pi / 180.0 * s * (b1 - b2), 0.0)
-        return np.array([dphi_c, (0.0, 0.2, 0.0), tuple(-v for v in dphi_c), (0.0, -1.0, 1.0),
-                         (1.0, 0.0, 0.0), (0.0, 0.8, 0.0)])
+        c, s = math.cos(th_r), math.sin(th_r)
+        a, b = c * db1 + (1.0 - c) * db2, -math.pi / 180.0 * s * (b1 - b2)
+        return np.array([[a, b, 0.0], [0.0, 0.2, 0.0], [-a, -b, 0.0], [0.0, -1.0, 1.0],
+                         [1.0, 0.0, 0.0], [0.0, 0.8, 0.0]])
 
     def numerical_jacobian(self, theta: np.ndarray, h: float = 1e-7) -> np.ndarray:
         """Central-difference Jacobian (for tests)."""

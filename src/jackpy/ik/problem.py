@@ -118,6 +118,14 @@ class Evaluation:
     goal_evals: list[GoalEval]
     levels: dict[int, tuple[np.ndarray, np.ndarray]]
     selection: tuple[int, ...]
+    #: the full variables ``x`` of ``z`` and the ``z`` object they were evaluated at (``q`` is the
+    #: posture of ``z`` while ``z is evaluated_z``; a solver that snaps ``z`` onto a bound replaces it)
+    x: np.ndarray | None = None
+    evaluated_z: np.ndarray | None = None
+
+    def posture(self) -> tuple[np.ndarray, np.ndarray] | None:
+        """``(x, q)`` of :attr:`z` when this evaluation was made at exactly that ``z``, else ``None``."""
+        return (self.x, self.q) if self.x is not None and self.z is self.evaluated_z else None
 
     def potential(self, level: int) -> float:
         F = self.levels[level][0]
@@ -238,12 +246,13 @@ class Compiled:
             q[idx] = g.driver(x[sl])
         return q
 
-    def apply(self, x: np.ndarray, q_base: np.ndarray | None = None) -> None:
-        """Write variables ``x`` into the figure (``q_base``: its displacements, when known)."""
-        if q_base is None:
+    def apply(self, x: np.ndarray, q_base: np.ndarray | None = None, q: np.ndarray | None = None) -> None:
+        """Write variables ``x`` into the figure (``q_base``: its displacements, when known; ``q``:
+        the displacements of ``x`` when already worked out, e.g. by the evaluation at ``x``)."""
+        if q_base is None and q is None:
             self.vm.apply(x)
             return
-        self.figure.q = self.q_of(q_base, x)
+        self.figure.q = self.q_of(q_base, x) if q is None else q
         for g, _, sl in self.vm.group_slices:
             g.angles = np.array(x[sl], dtype=float)
 
@@ -278,7 +287,7 @@ class Compiled:
                 F = np.concatenate([wk * evals[k].f for wk, k in zip(w, slots)])
                 Jc = np.concatenate([wk * evals[k].J for wk, k in zip(w, slots)])
             levels[lv] = (F, self._to_z(Jc, chain))
-        return Evaluation(z, q, evals, levels, tuple(a.selected for a in self.anyofs))
+        return Evaluation(z, q, evals, levels, tuple(a.selected for a in self.anyofs), x, z)
 
     def _to_z(self, Jc: np.ndarray, chain: list) -> np.ndarray:
         """Rows over the DOF columns ``cols`` -> rows over the scaled variables ``z``."""

@@ -84,14 +84,14 @@ def solve(problem: Problem, *, max_iterations: int = 100, tol_position: float = 
     run.max_evaluations = 2 + EVALUATIONS_PER_ITERATION * max(int(max_iterations), 0)
     if time_budget_s is not None:
         run.deadline = run.started + max(0.0, float(time_budget_s))
-    result = None
+    result = ev = None
     if analytic and comp.arm is not None:
         z = comp.arm.seed(comp, run.x_base, run.z)
         if z is not None:
             run.z = z
-            result_ev = run.evaluate(z)
-            if run.achieved(result_ev, comp.levels[-1]):
-                result = run.result(result_ev, ACHIEVED, 0, analytic=True)
+            ev = run.evaluate(z)
+            if run.achieved(ev, comp.levels[-1]):
+                result = run.result(ev, ACHIEVED, 0, analytic=True)
     if result is None:
         ev = run.evaluate(run.z)
         status = ACHIEVED
@@ -110,7 +110,11 @@ def solve(problem: Problem, *, max_iterations: int = 100, tol_position: float = 
             status = ACHIEVED if run.achieved(ev, comp.levels[-1]) else UNREACHABLE
         result = run.result(ev, status, run.iterations, analytic=comp.arm is not None and analytic)
     if apply:
-        comp.apply(comp.x_of(run.x_base, run.z), run.q_base)
+        known = ev.posture() if ev is not None and ev.z is run.z else None
+        if known is not None:  # the last evaluation's posture: no drivers, no copies
+            comp.apply(known[0], q=known[1])
+        else:
+            comp.apply(comp.x_of(run.x_base, run.z), run.q_base)
     return result
 
 

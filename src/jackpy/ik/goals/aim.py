@@ -21,6 +21,7 @@ from jackpy.ik.goals.base import (
     point3,
     unit,
 )
+from jackpy.ik.goals.kernels import aim_goal
 
 
 def aim_gradient_r(p: np.ndarray, r: np.ndarray, v: np.ndarray, c: float = 1.0) -> np.ndarray:
@@ -47,6 +48,12 @@ class Aim(SiteGoal):
         self.c = float(c)
 
     def evaluate(self, ctx: Context) -> GoalEval:
+        if ctx.compiled:  # the same arithmetic as one loop (goals/kernels.py)
+            f, J = np.empty(3), np.empty((3, ctx.cols.size))
+            deg = aim_goal(ctx.fk.segments[self.seg], self.location, self.axis,
+                           np.ascontiguousarray(self.target, dtype=float), self.c, ctx._mom, ctx._ang,
+                           ctx.columns.moved[self.seg], f, J)
+            return GoalEval(f, J, degrees=deg)
         w = ctx.site(self.seg, self.location)
         r = w[:3, 3]
         v = w[:3, :3] @ self.axis

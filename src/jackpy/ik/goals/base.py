@@ -65,6 +65,8 @@ def _site_rows(mom, ang, moved, vectors, weights, point, out):  # pragma: no cov
 
 
 _site_rows_compiled = numba.njit(cache=True, nogil=True)(_site_rows) if numba is not None else None
+from jackpy.ik.goals.kernels import com_rows as _com_rows_compiled  # noqa: E402
+from jackpy.ik.goals.kernels import twist as _twist_compiled  # noqa: E402
 
 
 def skews(vectors: np.ndarray) -> np.ndarray:
@@ -82,7 +84,11 @@ class Columns:
         self.kin, self.cols = kin, np.asarray(cols, dtype=int)
         self.sign = kin.dof_sign[self.cols].astype(float)
         self.trans = np.flatnonzero(np.isin(self.cols, kin.trans_dofs))
+        self.is_trans = np.isin(self.cols, kin.trans_dofs)
         self.moved = np.ascontiguousarray(kin.seg_moved_by_dof[:, self.cols], dtype=float)
+        #: mass (kg) each column moves, and the figure's
+        self.mass_moved = np.ascontiguousarray(kin.mass @ self.moved, dtype=float)
+        self.total_mass = float(kin.mass.sum())
 
 
 _ONE = np.ones(1)
@@ -101,13 +107,22 @@ class Context:
     small product with stacked ``[.]x`` matrices (:func:`skews`).
     """
 
-    #: site rows by the compiled loop (numba installed and not ``JACKPY_NO_JIT``)
+    #: site rows, the twist and the hot goals (:mod:`.kernels`) by compiled loops (numba installed
+    #: and not ``JACKPY_NO_JIT``); ``False`` on an instance or the class selects the numpy reference
     compiled: bool = _site_rows_compiled is not None
 
     def __init__(self, kin: Kinematics, fk: FKResult, cols: np.ndarray, columns: Columns | None = None) -> None:
         if columns is None or columns.kin is not kin:
             columns = Columns(kin, cols)
         self.kin, self.fk, self.cols, self.columns = kin, fk, columns.cols, columns
+        self._twists: dict[int, tuple[np.ndarray, np.ndarray]] = {}
+        self._com: tuple[np.ndarray, np.ndarray] | None = None
+        if self.compiled:
+            n = self.cols.size
+            self._ang, self._mom = np.empty((3, n)), np.empty((3, n))
+            _twist_compiled(fk.dof_axes, fk.dof_origins, self.cols, columns.sign, columns.is_trans,
+                            self._mom, self._ang)
+            return
         a = fk.dof_axes[self.cols].T * columns.sign  # (3, ncols) signed world axes
         o = fk.dof_origins[self.cols].T
         # d(point p)/dq = a x p - a x o = -[p]x a + (o x a); translations: a; d(vector v)/dq = -[v]x a
@@ -120,8 +135,6 @@ class Context:
             mom[:, t] = a[:, t]
             a[:, t] = 0.0
         self._ang, self._mom = np.ascontiguousarray(a), np.ascontiguousarray(mom)
-        self._twists: dict[int, tuple[np.ndarray, np.ndarray]] = {}
-        self._com: tuple[np.ndarray, np.ndarray] | None = None
 
     def site(self, seg: int, location: np.ndarray) -> np.ndarray:
         """World 4x4 transform of a site at ``location`` on segment ``seg``."""
@@ -165,8 +178,16 @@ class Context:
     def com(self) -> tuple[np.ndarray, np.ndarray]:
         """World centre of mass (3,) and its Jacobian over ``cols`` (3, ncols); computed once."""
         if self._com is None:
-            c, J = self.kin.com_and_jacobian(self.fk)
-            self._com = (c, J[:, self.cols])
+            total = self.columns.total_mass
+            if self.compiled and total > 0:  # only the solver's columns, one loop (kernels.py)
+                mc = self.kin.mass[:, None] * self.kin.segment_coms(self.fk)
+                J = np.empty((3, self.cols.size))
+                _com_rows_compiled(self.columns.moved, mc, self.columns.mass_moved, total, self._mom,
+                                   self._ang, J)
+                self._com = (mc.sum(axis=0) / total, J)
+            else:
+                c, J = self.kin.com_and_jacobian(self.fk)
+                self._com = (c, J[:, self.cols])
         return self._com
 
 

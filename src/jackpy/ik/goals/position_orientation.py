@@ -10,6 +10,7 @@ import math
 import numpy as np
 
 from jackpy.ik.goals.base import Chain, Context, GoalEval, SiteGoal
+from jackpy.ik.goals.kernels import frame_goal
 from jackpy.ik.goals.orientation import orientation_degrees
 
 
@@ -31,6 +32,14 @@ class PositionOrientation(SiteGoal):
         self.cx, self.cy = float(cx), float(cy)
 
     def evaluate(self, ctx: Context) -> GoalEval:
+        if ctx.compiled:  # the same arithmetic as one loop (goals/kernels.py)
+            sp, so = math.sqrt(self.position_weight), math.sqrt(1.0 - self.position_weight)
+            f, J = np.empty(9), np.empty((9, ctx.cols.size))
+            metres, deg = frame_goal(ctx.fk.segments[self.seg], self.location,
+                                     np.ascontiguousarray(self.target, dtype=float), sp, so * self.cx,
+                                     so * self.cy, self.cx, self.cy, ctx._mom, ctx._ang,
+                                     ctx.columns.moved[self.seg], f, J)
+            return GoalEval(f, J, metres, deg)
         w = ctx.site(self.seg, self.location)
         sp, so = np.sqrt(self.position_weight), np.sqrt(1.0 - self.position_weight)
         weights = np.array([sp, so * self.cx, so * self.cy])
