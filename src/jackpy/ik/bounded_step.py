@@ -189,6 +189,11 @@ def _box_step(J, lam, c, lower, upper, held, max_iterations, tol):  # pragma: no
     eps = tol * max(np.max(np.abs(c)), 1e-300)
     on_face = False
     it = 0
+    # the factor of the free block, (lambda I + J_f J_f^T) = L L^T, kept while the held set stays
+    factored = False
+    free = np.nonzero(~held)[0]
+    Jf = np.empty((m, 0))
+    L = np.empty((m, m))
     while it < max_iterations:
         it += 1
         Jd = J @ d
@@ -196,14 +201,29 @@ def _box_step(J, lam, c, lower, upper, held, max_iterations, tol):  # pragma: no
         q0 = c @ d + 0.5 * (Jd @ Jd + lam * (d @ d))
         s = np.zeros(n)
         if not on_face:
-            free = np.nonzero(~held)[0]
+            if not factored:
+                free = np.nonzero(~held)[0]
+                if free.size:
+                    Jf = np.ascontiguousarray(J[:, free])
+                    K = Jf @ Jf.T
+                    for k in range(m):
+                        K[k, k] += lam
+                    L = np.linalg.cholesky(K)
+                factored = True
             if free.size:
-                Jf = np.ascontiguousarray(J[:, free])
-                K = Jf @ Jf.T
-                for k in range(m):
-                    K[k, k] += lam
                 gf = grad[free]
-                sf = -(gf - Jf.T @ (np.linalg.solve(K, Jf @ gf))) / lam
+                y = Jf @ gf
+                for i in range(m):  # L L^T y' = y: forward, then back substitution
+                    v = y[i]
+                    for k in range(i):
+                        v -= L[i, k] * y[k]
+                    y[i] = v / L[i, i]
+                for i in range(m - 1, -1, -1):
+                    v = y[i]
+                    for k in range(i + 1, m):
+                        v -= L[k, i] * y[k]
+                    y[i] = v / L[i, i]
+                sf = -(gf - Jf.T @ y) / lam
                 for k in range(free.size):
                     s[free[k]] = sf[k]
         decrease = -(grad @ s)
@@ -217,6 +237,7 @@ def _box_step(J, lam, c, lower, upper, held, max_iterations, tol):  # pragma: no
                         held[i] = False
                         wrong = True
             if wrong:
+                factored = False
                 continue
             break
         alpha = 1.0
@@ -229,7 +250,9 @@ def _box_step(J, lam, c, lower, upper, held, max_iterations, tol):  # pragma: no
                 hit = False
                 for i in range(n):
                     if (trial[i] <= lower[i] + AT_BOUND and s[i] < 0) or (trial[i] >= upper[i] - AT_BOUND and s[i] > 0):
-                        held[i] = True
+                        if not held[i]:
+                            held[i] = True
+                            factored = False
                         hit = True
                 on_face = alpha == 1.0 and not hit
                 d = trial
@@ -252,6 +275,7 @@ def _box_step(J, lam, c, lower, upper, held, max_iterations, tol):  # pragma: no
         d = np.minimum(np.maximum(d + a * s, lower), upper)
         if var >= 0:
             held[var] = True
+            factored = False
             d[var] = upper[var] if s[var] > 0 else lower[var]
     return d, held, it
 
