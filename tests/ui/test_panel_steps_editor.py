@@ -94,7 +94,7 @@ def test_bake_writes_the_edited_walk_and_leaves_the_figure(tmp_path):
 
 def test_view_round_trip():
     doc, st, fig = _planned()
-    v = View((10.0, 20.0), (400.0, 300.0), footsteps_of(doc, fig.name))
+    v = View((10.0, 20.0), (400.0, 300.0), [s.point for s in footsteps_of(doc, fig.name)])
     p = np.array([0.3, 1.2])
     assert np.allclose(v.to_floor(v.to_px(p)), p)
     assert v.to_px(p + [0.0, 0.1])[1] < v.to_px(p)[1]  # +z is up the screen

@@ -1,8 +1,10 @@
 """Step editor panel ([SH5] §5.2.4, Fig 5.10; issue 13): the footsteps of the figure of
 interest's walk, drawn top view as seen from above (left feet blue, right feet red, the standing
-feet grey, the centre site's path yellow), the selected footstep's controls below.
+feet grey, the centre site's path yellow) over the floor footprints of everything else in the
+scene (CAD objects and other figures, dark grey; the outline the walker's centre must stay out of
+around them), the selected footstep's controls below.
 
-Plan a walk to a floor point (around the scene's CAD objects, as
+Plan a walk to a floor point (around the scene's objects, as
 :func:`jackpy.locomotion.walk_to.walk_to`), then drag a footprint in the canvas to move it, or
 nudge the selected one (5 cm, 5°) with the buttons; add a stride after it (a footstep of each
 side, halfway between their neighbours) or delete the stride it starts (it and the next
@@ -12,15 +14,19 @@ it; the plan lives in the document's ``extras["walk_plans"]`` (:mod:`jackpy.loco
 and is saved with it. "Bake" writes the walk as a motion file (baked frames, on a copy of the
 figure). The imgui drawing only calls :func:`plan_to`, :func:`move_footstep`, :func:`add_stride`,
 :func:`delete_stride`, :func:`press`, :func:`drag_to`, :func:`release` and :func:`bake`, which
-tests drive headless or through the window.
+tests drive headless or through the window. The path editor (:mod:`.path_editor`) edits the same
+plan through its path points and draws with this module's :class:`View`, :func:`floor_of` and
+:func:`draw_floor`.
 """
 
 from __future__ import annotations
 
 import copy
+from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
+from shapely.geometry import Polygon
 
 from jackpy.locomotion import walk_plan
 from jackpy.locomotion.walk_path import Footstep, Walk
@@ -41,11 +47,13 @@ FOOT_HALF_WIDTH = 0.045  # drawn footprint (m)
 COLOURS = {"left": 0xFFE08040, "right": 0xFF4050E0}  # ABGR: blue-ish left, red-ish right
 PATH_COLOUR = 0xFF40D0E0
 CONTROLS_H = 60.0  # pixels kept below the canvas for the selected footstep's controls
+OBJECT_COLOUR = 0xFF585858  # an object's floor footprint
+KEEP_OUT_COLOUR = 0xFF8A8A8A  # the outline the walker's centre keeps out of
 
 
 def defaults() -> dict[str, Any]:
     return {"selected": None, "drag": None, "goal": [0.0, 2.0], "path": "walk.motion.json", "message": "",
-            "view": None, "gait": {}, "walk": None}
+            "view": None, "gait": {}, "walk": None, "floor": None, "centre": None}
 
 
 # ---------------------------------------------------------------------------------- the plan
@@ -55,9 +63,21 @@ def footsteps_of(doc: "Document", name: str) -> list[Footstep] | None:
     return None if data is None else walk_plan.from_data(data, f"walk plan of {name}")
 
 
-def _store(doc: "Document", name: str, steps: list[Footstep]) -> None:
+def path_of(doc: "Document", name: str) -> list[walk_plan.Point] | None:
+    """The path points of figure ``name``'s walk plan (None when it has no plan or no path)."""
+    return walk_plan.path_from_data(doc.extras.get(PLANS, {}).get(name), f"walk plan of {name}")
+
+
+KEEP = object()  # _store's default: the plan keeps the path it has
+
+
+def store(doc: "Document", name: str, steps: list[Footstep], path: Any = KEEP) -> None:
+    """Set ``name``'s plan to ``steps`` (a footstep edit keeps the plan's path points; the path
+    editor gives new ones; None drops them)."""
     plans = dict(doc.extras.get(PLANS, {}))
-    plans[name] = walk_plan.to_data(steps)
+    if path is KEEP:
+        path = walk_plan.path_from_data(plans.get(name))
+    plans[name] = walk_plan.to_data(steps, path)
     doc.extras[PLANS] = plans
 
 
@@ -71,34 +91,92 @@ def gait_of(st: dict[str, Any], fig: "Figure"):
     return st["gait"][key]
 
 
-def plan_to(doc: "Document", st: dict[str, Any], fig: "Figure", goal, facing: float | None = None) -> None:
-    """Plan a walk of ``fig`` from where it stands to floor point ``goal`` (x, z; m) around the
-    scene's CAD objects: one undoable command. :class:`jackpy.errors.JackpyError` when no way."""
-    from jackpy.locomotion.walk_to import walk_to
+class _Surface:
+    """A scene figure as :mod:`jackpy.locomotion.floor_plan` reads an object: a mesh at the world
+    origin whose vertices are the figure's surface points (world, m) in its current posture."""
+
+    def __init__(self, points: np.ndarray) -> None:
+        self.vertices, self.location = points, np.eye(4)
+
+    def mesh(self) -> "_Surface":
+        return self
+
+
+def floor_objects(doc: "Document", fig: "Figure") -> list[Any]:
+    """Everything in the scene that ``fig`` walks round: CAD objects as they are, every other
+    figure (props such as the default scene's worktable and chair, other people) by its surface."""
+    from jackpy.body.measure import surface_points
     from jackpy.scene.cad import CADObject
 
-    objects = [o for o in doc.env.figures.values() if isinstance(o, CADObject)]
-    steps, _, _ = walk_to(fig, gait_of(st, fig), (float(goal[0]), float(goal[1])), objects, facing=facing)
-    doc.command(f"plan walk of {fig.name} to ({goal[0]:.2f}, {goal[1]:.2f})", lambda: _store(doc, fig.name, steps))
+    out: list[Any] = []
+    for o in doc.env.figures.values():
+        if o is fig:
+            continue
+        if isinstance(o, CADObject):
+            out.append(o)
+            continue
+        names = [n for n in o.segments if o.segment(n).psurf is not None]
+        if names:
+            out.append(_Surface(surface_points(o, names)))
+    return out
+
+
+@dataclass
+class Floor:
+    """The floor as the walker sees it (x, z; m): each object's footprint (a convex polygon of
+    its part below head height + 15 cm, :func:`floor_plan.footprints`), and ``blocked``, their
+    union inflated by the walker's half-width + margin, which its centre site must stay out of
+    (as :func:`jackpy.locomotion.walk_to.walk_to` plans)."""
+
+    footprints: list[Polygon]
+    blocked: Any  # shapely Polygon or MultiPolygon (empty when the floor is clear)
+
+
+def floor_of(doc: "Document", st: dict[str, Any], fig: "Figure") -> Floor:
+    """The scene's :class:`Floor` for walker ``fig`` (kept in the panel state until an object or
+    another figure moves)."""
+    from jackpy.locomotion import floor_plan
+
+    key = (fig.name, id(fig), tuple((n, o.location.tobytes(), np.asarray(o.q).tobytes())
+                                    for n, o in doc.env.figures.items() if o is not fig))
+    if st.get("floor") is None or st["floor"][0] != key:
+        objects = floor_objects(doc, fig)
+        height = float(max(fig.site_world("head", "base")[1, 3] + 0.15, 0.0))  # walk_to's cut
+        radius = floor_plan.half_width(fig) + floor_plan.MARGIN
+        st["floor"] = (key, Floor(floor_plan.footprints(objects, height),
+                                  floor_plan.obstacles(objects, height, radius)))
+    return st["floor"][1]
+
+
+def plan_to(doc: "Document", st: dict[str, Any], fig: "Figure", goal, facing: float | None = None) -> None:
+    """Plan a walk of ``fig`` from where it stands to floor point ``goal`` (x, z; m) around the
+    scene's objects (:func:`floor_objects`): one undoable command (the plan has no path points).
+    :class:`jackpy.errors.JackpyError` when there is no way."""
+    from jackpy.locomotion.walk_to import walk_to
+
+    steps, _, _ = walk_to(fig, gait_of(st, fig), (float(goal[0]), float(goal[1])), floor_objects(doc, fig),
+                          facing=facing)
+    doc.command(f"plan walk of {fig.name} to ({goal[0]:.2f}, {goal[1]:.2f})",
+                lambda: store(doc, fig.name, steps, None))
     st["selected"] = None
 
 
 def move_footstep(doc: "Document", name: str, j: int, x: float, z: float, psi: float) -> None:
     """Move footstep ``j`` of ``name``'s plan to ``(x, z)`` heading ``psi``: one undoable command."""
     steps = walk_plan.moved(footsteps_of(doc, name) or [], j, x, z, psi)
-    doc.command(f"move footstep {j} of {name}", lambda: _store(doc, name, steps))
+    doc.command(f"move footstep {j} of {name}", lambda: store(doc, name, steps))
 
 
 def add_stride(doc: "Document", name: str, j: int) -> None:
     """Add a stride after footstep ``j`` (:func:`walk_plan.with_stride_added`): one command."""
     steps = walk_plan.with_stride_added(footsteps_of(doc, name) or [], j)
-    doc.command(f"add a stride after footstep {j} of {name}", lambda: _store(doc, name, steps))
+    doc.command(f"add a stride after footstep {j} of {name}", lambda: store(doc, name, steps))
 
 
 def delete_stride(doc: "Document", name: str, j: int) -> None:
     """Delete footsteps ``j`` and ``j + 1`` (:func:`walk_plan.with_stride_deleted`): one command."""
     steps = walk_plan.with_stride_deleted(footsteps_of(doc, name) or [], j)
-    doc.command(f"delete footsteps {j}, {j + 1} of {name}", lambda: _store(doc, name, steps))
+    doc.command(f"delete footsteps {j}, {j + 1} of {name}", lambda: store(doc, name, steps))
 
 
 def walk_of(doc: "Document", st: dict[str, Any], fig: "Figure") -> Walk | None:
@@ -119,14 +197,23 @@ def centre_path(walk: Walk, dt: float = 0.05) -> np.ndarray:
     return np.array([walk.at(float(t)).pelvis[[0, 2], 3] for t in ts])
 
 
+def centre_path_of(st: dict[str, Any], walk: Walk) -> np.ndarray:
+    """:func:`centre_path` of ``walk``, kept in the panel state while the walk is the same (it
+    takes about a second under load: each sample evaluates the whole gait)."""
+    if st.get("centre") is None or st["centre"][0] is not walk:
+        st["centre"] = (walk, centre_path(walk))
+    return st["centre"][1]
+
+
 # ---------------------------------------------------------------------------------- the canvas
 class View:
-    """Top view of the floor in a canvas, seen from above: floor (x, z) m -> pixels (z up the
-    screen, x to the left, as the right-handed y-up world looks from above)."""
+    """Top view of the floor in a canvas at ``origin`` of ``size`` (pixels), seen from above:
+    floor (x, z) m -> pixels (z up the screen, x to the left, as the right-handed y-up world looks
+    from above), fitting ``points`` ((N, 2) floor points) with ``margin`` (m) around them."""
 
-    def __init__(self, origin, size, steps: list[Footstep]) -> None:
-        pts = np.array([s.point for s in steps])
-        lo, hi = pts.min(axis=0) - 0.3, pts.max(axis=0) + 0.3
+    def __init__(self, origin, size, points, margin: float = 0.3) -> None:
+        pts = np.asarray(points, float).reshape(-1, 2)
+        lo, hi = pts.min(axis=0) - margin, pts.max(axis=0) + margin
         self.scale = float(min(size[0] / (hi[0] - lo[0]), size[1] / (hi[1] - lo[1])))
         self.centre = 0.5 * (lo + hi)
         self.mid = np.array([origin[0] + 0.5 * size[0], origin[1] + 0.5 * size[1]])
@@ -163,7 +250,7 @@ def drag_to(doc: "Document", st: dict[str, Any], name: str, px) -> None:
     j, grab = st["drag"]
     steps = footsteps_of(doc, name)
     p = st["view"].to_floor(px) - grab
-    _store(doc, name, walk_plan.moved(steps, j, p[0], p[1], steps[j].psi))
+    store(doc, name, walk_plan.moved(steps, j, p[0], p[1], steps[j].psi))
 
 
 def release(doc: "Document", st: dict[str, Any], name: str) -> None:
@@ -173,12 +260,34 @@ def release(doc: "Document", st: dict[str, Any], name: str) -> None:
         st["drag"] = None
 
 
-def _footprint(view: View, s: Footstep, p) -> list[np.ndarray]:
-    """Corner pixels of a footprint (heel to toe tip, :data:`FOOT_HALF_WIDTH` each side)."""
+def footprint(s: Footstep, p) -> np.ndarray:
+    """Floor corners (4, 2) of footstep ``s``'s drawn footprint (heel to toe tip of gait ``p``'s
+    foot, :data:`FOOT_HALF_WIDTH` each side; m)."""
     f, w = np.array([np.sin(s.psi), np.cos(s.psi)]), np.array([np.cos(s.psi), -np.sin(s.psi)])
     back, front = float(p.foot.heel[2] - p.foot.ankle[2]), float(p.foot.tip[2] - p.foot.ankle[2])
-    return [view.to_px(s.point + a * f + b * FOOT_HALF_WIDTH * w)
-            for a, b in ((back, -1), (front, -1), (front, 1), (back, 1))]
+    return np.array([s.point + a * f + b * FOOT_HALF_WIDTH * w for a, b in ((back, -1), (front, -1), (front, 1), (back, 1))])
+
+
+def _px(view: View, pts) -> list[tuple[float, float]]:
+    return [tuple(map(float, view.to_px(q))) for q in pts]
+
+
+def draw_floor(imgui: Any, dl: Any, view: View, floor: Floor) -> None:
+    """The objects' footprints filled and the keep-out outline around them."""
+    for poly in floor.footprints:
+        dl.add_convex_poly_filled(_px(view, poly.exterior.coords[:-1]), OBJECT_COLOUR)
+    for poly in getattr(floor.blocked, "geoms", [floor.blocked]):
+        if not poly.is_empty:
+            dl.add_polyline(_px(view, poly.exterior.coords[:-1]), KEEP_OUT_COLOUR, 1.0, imgui.ImDrawFlags_.closed)
+
+
+def draw_footprints(imgui: Any, dl: Any, view: View, steps: list[Footstep], p, selected: int | None = None) -> None:
+    """Footprints in their side's colour (the standing feet grey), the selected one outlined."""
+    for j, s in enumerate(steps):
+        pts = _px(view, footprint(s, p))
+        dl.add_convex_poly_filled(pts, COLOURS[s.side] if j >= 2 else 0xFF909090)
+        if selected == j:
+            dl.add_polyline(pts, 0xFFFFFFFF, 2.0, imgui.ImDrawFlags_.closed)
 
 
 def _canvas(imgui: Any, app: "App", st: dict[str, Any], fig: "Figure", steps: list[Footstep], walk: Walk) -> None:
@@ -186,20 +295,18 @@ def _canvas(imgui: Any, app: "App", st: dict[str, Any], fig: "Figure", steps: li
     avail = imgui.get_content_region_avail()
     size = (max(avail.x, 100.0), max(avail.y - CONTROLS_H, 100.0))
     if st["drag"] is None:  # the view holds still while a footprint is dragged
-        st["view"] = View((origin.x, origin.y), size, steps)
+        st["view"] = View((origin.x, origin.y), size, [s.point for s in steps])
     view: View = st["view"]
     imgui.invisible_button("steps_canvas", size)
     dl = imgui.get_window_draw_list()
-    dl.add_rect_filled((origin.x, origin.y), (origin.x + size[0], origin.y + size[1]), 0xFF202020)
-    p = gait_of(st, fig)
-    for j, s in enumerate(steps):
-        pts = [tuple(map(float, q)) for q in _footprint(view, s, p)]
-        colour = COLOURS[s.side] if j >= 2 else 0xFF909090
-        dl.add_convex_poly_filled(pts, colour)
-        if st["selected"] == j:
-            dl.add_polyline(pts, 0xFFFFFFFF, 2.0, imgui.ImDrawFlags_.closed)
-    path = [tuple(map(float, view.to_px(q))) for q in centre_path(walk)]
-    dl.add_polyline(path, PATH_COLOUR, 1.5, 0)
+    corner = (origin.x + size[0], origin.y + size[1])
+    dl.push_clip_rect((origin.x, origin.y), corner, True)
+    dl.add_rect_filled((origin.x, origin.y), corner, 0xFF202020)
+    draw_floor(imgui, dl, view, floor_of(app.doc, st, fig))
+    draw_footprints(imgui, dl, view, steps, gait_of(st, fig), st["selected"])
+    if st["drag"] is None:  # made again once the footprint is let go
+        dl.add_polyline(_px(view, centre_path_of(st, walk)), PATH_COLOUR, 1.5, 0)
+    dl.pop_clip_rect()
     mouse = imgui.get_mouse_pos()
     if imgui.is_item_clicked(0):
         press(app.doc, st, fig.name, (mouse.x, mouse.y))
