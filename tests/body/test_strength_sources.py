@@ -7,12 +7,15 @@ from importlib import resources
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 from scipy.stats import norm
 
 from jackpy.analysis.statics import Load, joint_torques
 from jackpy.analysis.strength import dof_strengths, utilisation
 from jackpy.body.human import make_human
-from jackpy.body.strength import default_cv, has_posture, source_of, strength_rows, strength_table, torque
+from jackpy.body.strength import (default_cv, has_posture, posture_data, source_of, strength_rows, strength_table,
+                                  torque)
 
 # Kamon (1981) via Johnson, Biomechanics and Exercise Physiology, Table 2.2.2: N m at 45/90/135 deg
 KAMON_SHOULDER_FLEXION = {"male": {45: 67, 90: 68, 135: 47}, "female": {45: 29, 90: 30, 135: 21}}
@@ -149,3 +152,16 @@ def test_posture_flags():
     assert has_posture("elbow", "flexion", include_curves=True)
     assert has_posture("shoulder", "elevation", include_curves=True)
     assert not has_posture("shoulder", "twist", include_curves=True)
+
+
+KINDS = sorted({(k[0], k[1]) for k in (*strength_rows(), *posture_data())})
+
+
+@settings(max_examples=60, deadline=None)
+@given(st.sampled_from(KINDS), st.sampled_from(["male", "female"]), st.floats(1.0, 99.0),
+       st.floats(-np.pi, np.pi))
+def test_no_posture_is_stronger_than_the_peak(kind_dof, sex, percentile, angle):
+    """Every posture's strength lies in (0, peak]: the curves are shapes of at most 1."""
+    peak = torque(*kind_dof, sex, percentile)
+    here = torque(*kind_dof, sex, percentile, angle=angle)
+    assert all(0.0 < h <= p * (1 + 1e-12) for h, p in zip(here, peak))
