@@ -1,4 +1,5 @@
-"""Walk plans as data (the step editor's footsteps in a document): round trip, bad data, moves."""
+"""Walk plans as data (the step and path editors' plan in a document): round trip, bad data,
+moves; path points optional (old plans have none), added, moved and deleted."""
 
 import json
 
@@ -17,6 +18,10 @@ def test_round_trip_through_json():
     steps = footsteps.from_path(p, [(0.0, 0.0), (1.0, 1.0), (2.0, 1.0)])
     again = walk_plan.from_data(json.loads(json.dumps(walk_plan.to_data(steps))))
     assert again == steps
+    path = [(0.0, 0.0), (1.0, 1.0), (2.0, 1.0)]
+    data = json.loads(json.dumps(walk_plan.to_data(steps, path)))
+    assert walk_plan.from_data(data) == steps and walk_plan.path_from_data(data) == path
+    assert walk_plan.path_from_data(walk_plan.to_data(steps)) is None  # a plan saved before paths
 
 
 @pytest.mark.parametrize("data,message", [
@@ -27,6 +32,11 @@ def test_round_trip_through_json():
     ({"steps": [[0, 0, 0, "left"], [0, "a", 0, "right"]]}, "footstep 1 is not"),
     ({"steps": [[0, 0, 0, "left"], [0, float("nan"), 0, "right"]]}, "footstep 1 is not"),
     ({"steps": [[0, 0, 0, "middle"], [0, 0, 0, "right"]]}, "footstep 0 is not"),
+    ({"steps": [[0, 0, 0, "left"], [0, 0, 0, "right"]], "path": [[0, 0]]}, "two or more"),
+    ({"steps": [[0, 0, 0, "left"], [0, 0, 0, "right"]], "path": "0,0 1,1"}, "two or more"),
+    ({"steps": [[0, 0, 0, "left"], [0, 0, 0, "right"]], "path": [[0, 0], [1, True]]}, "path point 1 is not"),
+    ({"steps": [[0, 0, 0, "left"], [0, 0, 0, "right"]], "path": [[0, 0], [1, 2, 3]]}, "path point 1 is not"),
+    ({"steps": [[0, 0, 0, "left"], [0, 0, 0, "right"]], "path": [[0, 0], [float("inf"), 0]]}, "path point 1"),
 ])
 def test_bad_plans_are_one_line(data, message):
     with pytest.raises(PlanError, match=message) as e:
@@ -36,14 +46,34 @@ def test_bad_plans_are_one_line(data, message):
 
 @settings(max_examples=200, deadline=None)
 @given(st.recursive(st.none() | st.booleans() | st.floats() | st.text(max_size=5) | st.integers(),
-                    lambda kids: st.lists(kids, max_size=5) | st.dictionaries(st.just("steps"), kids, max_size=1),
+                    lambda kids: st.lists(kids, max_size=5)
+                    | st.dictionaries(st.sampled_from(["steps", "path"]), kids, max_size=2),
                     max_leaves=20))
 def test_fuzz_only_plan_errors(data):
     try:
         steps = walk_plan.from_data(data)
+        path = walk_plan.path_from_data(data)
     except PlanError:
         return
     assert len(steps) >= 2 and all(np.isfinite([s.x, s.z, s.psi]).all() for s in steps)
+    assert path is None or (len(path) >= 2 and np.isfinite(path).all())
+
+
+def test_path_points_added_moved_deleted_as_copies():
+    path = [(0.0, 0.0), (0.0, 2.0)]
+    more = walk_plan.with_point_added(path, 1, 1.0, 1.0)
+    assert more == [(0.0, 0.0), (1.0, 1.0), (0.0, 2.0)] and path == [(0.0, 0.0), (0.0, 2.0)]
+    assert walk_plan.with_point_added(path, 2, 3.0, 3.0)[-1] == (3.0, 3.0)
+    assert walk_plan.with_point_moved(more, 2, 0.5, 2.5) == [(0.0, 0.0), (1.0, 1.0), (0.5, 2.5)]
+    assert walk_plan.with_point_deleted(more, 1) == path
+    for bad in (lambda: walk_plan.with_point_added(path, 0, 1.0, 1.0),
+                lambda: walk_plan.with_point_added(path, 3, 1.0, 1.0),
+                lambda: walk_plan.with_point_moved(path, 0, 1.0, 1.0),
+                lambda: walk_plan.with_point_deleted(more, 0)):
+        with pytest.raises(PlanError, match="where the figure stands"):
+            bad()
+    with pytest.raises(PlanError, match="two points"):
+        walk_plan.with_point_deleted(path, 1)
 
 
 def test_moved_copies_and_keeps_the_standing_feet():
