@@ -2,6 +2,7 @@
 recovery, malformed session data."""
 
 import json
+import os
 
 import numpy as np
 import pytest
@@ -90,18 +91,21 @@ def test_malformed_session_line_is_a_session_error_with_its_line(tmp_path):
 
 def test_autosave_recover_and_discard(tmp_path, monkeypatch):
     monkeypatch.setenv("JACKPY_HOME", str(tmp_path / "home"))
-    assert session.pending_recovery() is None
+    assert session.orphans() == []
     app = posed_app()
-    session.autosave(app)
+    written = session.autosave(app).result(timeout=120)  # (in the background)
+    assert written == session.recovery_path(None) and written.name == f"untitled-{os.getpid()}.env"
     assert app.session_path is None  # autosave does not take over the user's file
-    found = session.pending_recovery()
-    assert found is not None
+    assert session.orphans() == []  # this run is alive: its recovery is no orphan
+    session.finish_autosave(app, clean=False)  # the run ends without a clean exit
+    found = session.recovery_offer(None)
+    assert found == written
     other = App(session.default_scene()[0])
     session.recover(other, found)
     name = app.figure_of_interest().name
     assert np.array_equal(other.env.figure(name).q, app.env.figure(name).q)
     assert other.session_path is None and other.dirty
-    assert session.pending_recovery() is None
+    assert session.orphans() == []
 
 
 def test_user_goal_with_behaviors_survives_save_and_open(tmp_path):
@@ -364,12 +368,15 @@ def test_recovery_is_offered_for_the_scene_it_autosaved(tmp_path, monkeypatch):
     session.save_session(app, scene)
     fig = app.figure_of_interest()
     fig.q = np.clip(fig.q + 0.1, fig.lower, fig.upper)  # work after the save, then a crash
-    session.autosave(app)
-    assert session.recovery_offer(scene) == session.pending_recovery()
+    written = session.autosave(app).result(timeout=120)
+    assert written == session.recovery_path(scene) != session.recovery_path(tmp_path / "other.env")
+    session.finish_autosave(app, clean=False)
+    assert session.recovery_offer(scene) == written
     assert session.recovery_offer(tmp_path / "other.env") is None
+    assert session.recovery_offer(None) is None  # nor for an unnamed scene
     other = App(session.default_scene()[0])
     session.open_session(other, scene)
     session.recover(other, session.recovery_offer(scene))
     assert other.session_path == scene.resolve() and other.dirty
     assert np.array_equal(other.env.figure(fig.name).q, fig.q)
-    assert session.pending_recovery() is None
+    assert session.orphans() == []

@@ -162,7 +162,7 @@ def test_views_undo_quit_prompt_and_crash_recovery(scene, tmp_path):
         until(wb, lambda a: differs(dragged, a) < 1.0, "the prompt gone")
         time.sleep(1.0)
         assert wb.proc.poll() is None  # Cancel kept the window
-        recovery = home / "recovery" / "recovery.env"
+        recovery = home / "recovery" / session.recovery_path(scene).name  # the scene's own recovery file
         since = time.time()
         wait_for(lambda: recovery.is_file() and recovery.stat().st_mtime > since + 0.5, "an autosave after the drag",
                  timeout=60)
@@ -185,7 +185,7 @@ def test_views_undo_quit_prompt_and_crash_recovery(scene, tmp_path):
         assert wait_for(lambda: wb.title == "scene.env — jackpy", "the save", timeout=30)
     finally:
         wb.kill()
-    saved, autosaved = _figure_places(scene), _figure_places(seen / "recovery.env")
+    saved, autosaved = _figure_places(scene), _figure_places(seen / recovery.name)
     assert saved.keys() == autosaved.keys() == original.keys()
     moved = [n for n in saved if not np.allclose(original[n], autosaved[n], atol=1e-4)]
     assert moved  # the autosave holds the drag ...

@@ -1,24 +1,32 @@
 """The window's side of sessions: save, open, new scene, CAD import, autosave and recovery for an
 :class:`~jackpy.ui.app.App`. The file format and everything headless are
-:mod:`jackpy.document.session`'s (re-exported here); these add the camera and the log.
+:mod:`jackpy.document.session`'s and :mod:`jackpy.document.recovery`'s (re-exported here); these
+add the camera and the log. Autosave writes in the background (:class:`~jackpy.document.recovery.Autosaver`,
+one per app): :func:`autosave` returns at once, :func:`report_autosave` puts a failed write in the
+log, :func:`finish_autosave` (a clean exit) waits for a pending write and deletes the run's
+recovery files.
 """
 
 from __future__ import annotations
 
-import json
 import os
+from concurrent.futures import Future
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 from jackpy.document import Document
-from jackpy.errors import JackpyError
+from jackpy.document.recovery import (  # noqa: F401  (re-exported)
+    Autosaver,
+    discard_recovery,
+    offer_for,
+    orphans,
+    recovery_path,
+    recovery_scene,
+)
 from jackpy.document.session import (  # noqa: F401  (re-exported)
     default_scene,
-    discard_recovery,
     figures_dir,
     load_session,
-    pending_recovery,
-    recovery_path,
     session_file,
     sidecar_path,
     standard_human,
@@ -75,38 +83,51 @@ def import_cad_file(app: App, path: str | os.PathLike[str], units: str = "m", up
     return obj
 
 
-def autosave(app: App) -> None:
-    """Write the recovery file (without changing the session's own path); it remembers which
-    scene it is the autosave of."""
-    app.doc.view_state["autosave_of"] = str(Path(app.session_path).resolve()) if app.session_path else None
-    try:
-        save_session(app, recovery_path(), remember=False)
-    finally:
-        app.doc.view_state.pop("autosave_of", None)
+def autosaver(app: App) -> Autosaver:
+    """The app's autosaver (made on first use)."""
+    saver = getattr(app, "autosaver", None)
+    if saver is None:
+        saver = Autosaver()
+        app.autosaver = saver  # type: ignore[attr-defined]
+    return saver
 
 
-def recovery_scene(path: Path) -> Path | None:
-    """The scene a recovery file is the autosave of (None: an unnamed scene, or unreadable)."""
-    try:
-        found = doc_session._session_line(Path(path))
-        data = json.loads(found[0]) if found else {}
-        of = (data.get("view") or {}).get("autosave_of")
-    except (JackpyError, ValueError, AttributeError):
-        return None
-    return Path(of) if isinstance(of, str) else None
+def autosave(app: App) -> Future[Any]:
+    """Write the app's recovery file in the background (the session's own path and dirty flag are
+    left alone); it remembers which scene it is the autosave of. Returns the write's future."""
+    app.store_view()
+    return autosaver(app).save(app.doc, app.session_path)
+
+
+def drop_autosave(app: App) -> None:
+    """Nothing is unsaved (the scene's file holds the work): delete the app's recovery files."""
+    saver = getattr(app, "autosaver", None)
+    if saver is not None and saver.written:
+        saver.drop()
+
+
+def report_autosave(app: App) -> None:
+    """Put each failed background write in the log (``error: autosave failed: ...``, a toast)."""
+    saver = getattr(app, "autosaver", None)
+    if saver is not None:
+        for message in saver.failures():
+            app.info(f"error: autosave failed: {message}")
+
+
+def finish_autosave(app: App, clean: bool = True) -> None:
+    """The end of a run: wait for a pending write; a ``clean`` exit deletes the recovery files."""
+    saver = getattr(app, "autosaver", None)
+    if saver is not None:
+        saver.close(discard=clean)
+        report_autosave(app)
+        app.autosaver = None  # type: ignore[attr-defined]
 
 
 def recovery_offer(scene: str | os.PathLike[str] | None) -> Path | None:
     """The recovery file to offer when the workbench starts on ``scene`` (None: the default
-    scene): one a crashed run left behind for that scene, or for an unnamed scene when no scene
-    is given."""
-    found = pending_recovery()
-    if found is None:
-        return None
-    of = recovery_scene(found)
-    if scene is None:
-        return found
-    return found if of is not None and of == Path(scene).resolve() else None
+    scene): the newest one a crashed run left behind for that scene (for an unnamed scene when
+    none is given); the others are in File → Recover."""
+    return offer_for(scene)
 
 
 def recover(app: App, path: Path) -> None:
