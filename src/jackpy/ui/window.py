@@ -268,10 +268,14 @@ class Window:
             glfw.set_window_title(self.handle, title)
             self._title = title
 
-    def run(self, autosave: Callable[[], None] | None = None) -> None:
+    def run(self, autosave: Callable[[], object] | None = None) -> None:
         """Run frames until the window is closed; ``autosave`` is called every ``settings.autosave_s``
-        while there are unsaved changes, and never while a crash's recovery file is still offered
-        (the autosave would overwrite the work the offer is about)."""
+        while there are unsaved changes (it writes in the background, :func:`jackpy.ui.session.autosave`),
+        and never while a crash's recovery file is still offered (the autosave would overwrite the
+        work the offer is about). With nothing unsaved the run's recovery files go; a failed write
+        is in the log; the end of the run waits for a pending write and deletes them."""
+        from jackpy.ui import session
+
         last = time.monotonic()
         while not self.should_close:
             if self.idle:
