@@ -284,7 +284,11 @@ class Window:
             if autosave is not None and time.monotonic() - last >= self.app.settings.autosave_s:
                 if self.app.dirty and self.ui.recovery_offer is None:
                     autosave()
+                elif not self.app.dirty:
+                    session.drop_autosave(self.app)
                 last = time.monotonic()
+            session.report_autosave(self.app)
+        session.finish_autosave(self.app)
 
     def close(self) -> None:
         """Free the GL and ImGui resources and the window."""
