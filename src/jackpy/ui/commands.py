@@ -1,8 +1,9 @@
 """Every menu command of the workbench, once, as data: the menu bar draws them, the command
 palette (:mod:`jackpy.ui.palette`) offers them, Help → Keyboard shortcuts lists their keys.
 
-A :class:`Command` has its menu, label, shortcut text, what it does (``run(app, ui)``), and for a
-switch its state (``checked(app, ui)``; running it flips it). The file commands open the window's
+A :class:`Command` has its menu, label, shortcut text, what it does (``run(app, ui)``), for a
+switch its state (``checked(app, ui)``; running it flips it), and whether it can run now
+(``enabled(app, ui)``; the menu greys it out). The file commands open the window's
 :class:`~jackpy.ui.file_dialog.FileDialog`; :func:`file_chosen` carries out the answer.
 """
 
@@ -37,6 +38,7 @@ class Command:
     shortcut: str = ""
     checked: Callable[["App", "UiState"], bool] | None = None
     separator_before: bool = False
+    enabled: Callable[["App", "UiState"], bool] | None = None
 
     @property
     def name(self) -> str:
@@ -61,7 +63,7 @@ def default_save_path(app: "App") -> str:
 
 
 def file_request(app: "App", ui: "UiState", kind: str) -> FileRequest:
-    """What the file dialog asks for ``kind`` (``open``, ``save_as``, ``import``, ``screenshot``),
+    """What the file dialog asks for ``kind`` (``open``, ``save_as``, ``import``, ``screenshot``, ``terrain``),
     starting in the document's folder, else the user's home."""
     folder = start_folder(app.session_path)
     if kind == "open":
@@ -74,6 +76,10 @@ def file_request(app: "App", ui: "UiState", kind: str) -> FileRequest:
         return FileRequest(kind, "Import CAD", False, CAD_EXTENSIONS, folder, options=lambda: import_options(ui))
     if kind == "screenshot":
         return FileRequest(kind, "Save screenshot", True, (".png",), folder, "screenshot.png")
+    if kind == "terrain":
+        from jackpy.document.terrain import MESH_EXTENSIONS
+
+        return FileRequest(kind, "Load terrain", False, (".json", ".png", *MESH_EXTENSIONS), folder)
     raise ValueError(f"no file dialog for {kind!r}")
 
 
@@ -84,6 +90,7 @@ def ask_file(app: "App", ui: "UiState", kind: str) -> None:
 
 def file_chosen(app: "App", ui: "UiState", request: FileRequest, path: Path) -> bool:
     """Carry out the file dialog's answer; True when it worked (a failure is in the log)."""
+    from jackpy.document.terrain import load_terrain
     from jackpy.ui import screenshot, session
 
     actions = {
@@ -91,6 +98,7 @@ def file_chosen(app: "App", ui: "UiState", request: FileRequest, path: Path) -> 
         "save_as": lambda: session.save_session(app, path),
         "import": lambda: app.import_cad(path, ui.import_units, ui.import_up),
         "screenshot": lambda: screenshot.save_view(app, path),
+        "terrain": lambda: app.info(f"terrain {load_terrain(app.doc, path).name} loaded from {path}"),
     }
     ok = run_reporting(app, actions[request.kind])
     if request.kind == "save_as" and ui.quit_after_save and ok and not app.dirty:
@@ -153,6 +161,15 @@ def open_recent(app: "App", ui: "UiState", path: str) -> None:
                    lambda: run_reporting(app, lambda: session.open_session(app, Path(path))))
 
 
+def recover_orphan(app: "App", ui: "UiState", path: Path) -> None:
+    """File → Recover: open a crashed run's recovery file as unsaved work (asking first when the
+    current scene has unsaved changes)."""
+    from jackpy.ui import session
+
+    unless_unsaved(app, ui, f"recovering {path.name}",
+                   lambda: run_reporting(app, lambda: session.recover(app, path)))
+
+
 # ---------------------------------------------------------------------- the table
 def _new(app: "App", ui: "UiState") -> None:
     from jackpy.ui import session
@@ -209,6 +226,25 @@ def _reset_layout(app: "App", ui: "UiState") -> None:
     ui.reset_layout = True
 
 
+def _example_terrain(app: "App", ui: "UiState") -> None:
+    from jackpy.document.terrain import example_terrain, set_terrain
+
+    set_terrain(app.doc, example_terrain(), "example terrain")
+
+
+def _remove_terrain(app: "App", ui: "UiState") -> None:
+    from jackpy.document.terrain import set_terrain
+
+    if _has_terrain(app, ui):
+        set_terrain(app.doc, None)
+
+
+def _has_terrain(app: "App", ui: "UiState") -> bool:
+    from jackpy.document.terrain import terrain_of
+
+    return terrain_of(app.doc) is not None
+
+
 def _palette(app: "App", ui: "UiState") -> None:
     ui.palette_open = True
 
@@ -245,6 +281,9 @@ def commands(panel_titles: list[str]) -> list[Command]:
         flip, shown = _panel(title)
         table.append(Command("View", title, flip, "", shown, separator_before=i == 0))
     table += [
+        Command("Scene", "Load terrain...", lambda app, ui: ask_file(app, ui, "terrain")),
+        Command("Scene", "Example terrain", _example_terrain),
+        Command("Scene", "Remove terrain", _remove_terrain, enabled=_has_terrain),
         Command("Help", "Command palette", _palette, "Ctrl+Shift+P"),
         Command("Help", "Keyboard shortcuts", _show_panel("Keyboard shortcuts")),
     ]

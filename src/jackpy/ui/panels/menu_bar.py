@@ -1,5 +1,6 @@
-"""The main menu bar (File, Edit, View, Help, drawn from :mod:`jackpy.ui.commands`), the file
-dialog, the quit and recovery prompts and the command palette."""
+"""The main menu bar (File, Edit, View, Scene, Help, drawn from :mod:`jackpy.ui.commands`; File's
+Open Recent and Recover lists), the file dialog, the quit and recovery prompts and the command
+palette."""
 
 from __future__ import annotations
 
@@ -13,7 +14,7 @@ if TYPE_CHECKING:
     from jackpy.ui.commands import Command
     from jackpy.ui.panels import UiState
 
-MENUS = ("File", "Edit", "View", "Help")
+MENUS = ("File", "Edit", "View", "Scene", "Help")
 
 
 def draw(app: "App", ui: "UiState") -> None:
@@ -28,6 +29,7 @@ def draw(app: "App", ui: "UiState") -> None:
                     _menu_item(app, ui, c)
                     if c.label == "Open...":
                         _recent_menu(app, ui)
+                        _recover_menu(app, ui)
                 imgui.end_menu()
         imgui.end_main_menu_bar()
     answer = ui.files.draw()
@@ -44,7 +46,7 @@ def draw(app: "App", ui: "UiState") -> None:
 def _menu_item(app: "App", ui: "UiState", c: "Command") -> None:
     if c.separator_before:
         imgui.separator()
-    label, enabled = c.label, True
+    label, enabled = c.label, c.enabled is None or c.enabled(app, ui)
     if c.menu == "Edit" and c.label in ("Undo", "Redo"):
         pending = app.undo_stack.undo_label if c.label == "Undo" else app.undo_stack.redo_label
         label, enabled = f"{c.label} {pending or ''}###{c.label}", pending is not None
@@ -67,6 +69,30 @@ def _recent_menu(app: "App", ui: "UiState") -> None:
         imgui.separator()
         if imgui.menu_item_simple("Clear recent files"):
             app.preferences.forget_recent()
+        imgui.end_menu()
+
+
+def _recover_menu(app: "App", ui: "UiState") -> None:
+    """File → Recover: the recovery files crashed runs left (newest first; the one offered at
+    start-up is in its prompt), each named by its scene and time; a click recovers it."""
+    import time
+
+    from jackpy.ui import session
+    from jackpy.ui.commands import recover_orphan
+
+    if imgui.begin_menu("Recover"):
+        found = [p for p in session.orphans() if str(p) != ui.recovery_offer]
+        for i, path in enumerate(found):
+            try:
+                when = time.strftime("%Y-%m-%d %H:%M", time.localtime(path.stat().st_mtime))
+            except OSError:
+                continue  # (recovered or discarded meanwhile)
+            scene = session.recovery_scene(path)
+            name = f"{scene.name}  ({scene.parent})" if scene is not None else "untitled scene"
+            if imgui.menu_item_simple(f"{name}, autosaved {when}###recover{i}"):
+                recover_orphan(app, ui, path)
+        if not found:
+            imgui.menu_item_simple("No recovery files", enabled=False)
         imgui.end_menu()
 
 
