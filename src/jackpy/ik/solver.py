@@ -46,6 +46,11 @@ CREEP, CREEP_STEP = 1e-9, 1e-8
 #: damping of the bounded Gauss-Newton step: ``lambda = GN_DAMPING_FLOOR + GN_DAMPING * |F|`` (scaled units)
 GN_DAMPING, GN_DAMPING_FLOOR = 0.01, 1e-4
 _EMPTY = np.zeros(0)
+#: restarts of a one-level bounded solve caught in a local minimum (:meth:`_Run.restarted`): the
+#: fraction of the way from the start to the middle of the limits, and the damping scale; and the
+#: iterations each attempt may take before the next
+RESTARTS = ((0.5, 1.0), (1.0, 1.0), (0.0, 0.3))
+ATTEMPT_ITERATIONS = 20
 #: forward passes one iteration may spend on average (line-search trials and, with priority levels,
 #: their restoration steps): a solve starts at most ``2 + EVALUATIONS_PER_ITERATION * max_iterations``
 #: evaluations (the start and an arm seed), so ``max_iterations`` bounds its cost; when they are
@@ -101,7 +106,7 @@ def solve(problem: Problem, *, max_iterations: int = 100, tol_position: float = 
                 hi = comp.levels[:i]
                 manifold = Manifold(hi, float(sum(ev.potential(k) for k in hi)))
             if step == "bounded" and len(comp.levels) == 1:
-                ev, status = run.minimise_bounded(ev, level, max_iterations - run.iterations)
+                ev, status = run.restarted(ev, level, max_iterations)
             else:
                 ev, status = run.minimise(ev, level, manifold, max_iterations - run.iterations)
             if status in (ITERATION_LIMIT, TIME_LIMIT):
@@ -143,6 +148,7 @@ class _Run:
         self.started = time.perf_counter()
         self.deadline = math.inf
         self.max_evaluations = math.inf
+        self.damping = 1.0  # scale of the bounded step's damping (restarts, :data:`RESTART_DAMPING`)
 
     # ----- helpers ----------------------------------------------------------------------------------
     def _feasible(self, z: np.ndarray) -> np.ndarray:
@@ -313,6 +319,47 @@ class _Run:
                 return ev, "stationary"
         return ev, ITERATION_LIMIT
 
+    def restarted(self, ev: Evaluation, level: int, max_iterations: int) -> tuple[Evaluation, str]:
+        """:meth:`minimise_bounded` from ``ev`` with restarts out of local minima.
+
+        A first attempt that has not converged within :data:`ATTEMPT_ITERATIONS` (its path through
+        the limits got caught; a solve that settles on a compromise sooner, such as a warm start
+        near an unreachable target, is not restarted) is followed by the attempts of
+        :data:`RESTARTS`, each as long, from the start moved a fraction of the way to the middle of
+        the limits and with the damping scaled; the lowest potential wins, and the rest of the
+        iterations continue from it at the normal damping. Stops as soon as the goals are
+        achieved, the iterations are spent or the time box has passed. Deterministic."""
+        start = ev
+        best, status = self.minimise_bounded(ev, level, min(max_iterations - self.iterations, ATTEMPT_ITERATIONS))
+        if status != ITERATION_LIMIT or self.iterations >= max_iterations:
+            return best, status  # achieved, settled (a compromise), out of time or of iterations
+        middle = np.where(np.isfinite(self.lo + self.hi), 0.5 * (self.lo + self.hi), start.z)
+        for toward, scale in RESTARTS + ((None, 1.0),):
+            left = max_iterations - self.iterations
+            if left <= 0 or self.expired():
+                break
+            self.damping = scale
+            if toward is None:  # the rest of the iterations from the best attempt
+                origin = best
+            elif toward:
+                origin = self.evaluate(self._feasible(start.z + toward * (middle - start.z)))
+            else:
+                origin = start
+            ev, st = self.minimise_bounded(origin, level, left if toward is None else min(left, ATTEMPT_ITERATIONS))
+            if st == ACHIEVED or ev.potential(level) < best.potential(level):
+                best, status = ev, st
+            if st in (ACHIEVED, TIME_LIMIT):
+                status = st
+                break
+        self.damping = 1.0
+        if status not in (ACHIEVED, TIME_LIMIT):
+            if self.expired():
+                status = self.stop_status()
+            else:
+                status = ITERATION_LIMIT if self.iterations >= max_iterations else "stationary"
+        self.z = best.z
+        return best, status
+
     def minimise_bounded(self, ev: Evaluation, level: int, budget: int) -> tuple[Evaluation, str]:
         """Minimise level ``level`` (no higher level to hold) by bounded Gauss-Newton steps.
 
@@ -335,7 +382,7 @@ class _Run:
                 return ev, ACHIEVED
             if self.expired():
                 return ev, self.stop_status()
-            lam = (GN_DAMPING_FLOOR + GN_DAMPING * math.sqrt(G)) * boost
+            lam = (GN_DAMPING_FLOOR + GN_DAMPING * math.sqrt(G)) * boost * self.damping
             c = J.T @ F
             d, held, _ = bounded_step(J, lam, c, self.lo - z, self.hi - z, self.A if rows else None,
                                       self.b - self.A @ z if rows else None, held=held)
