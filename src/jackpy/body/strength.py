@@ -140,9 +140,16 @@ def posture_factor(kind: str, dof: str, side: str, sex: str, angle: float) -> fl
     return float(np.interp(float(angle), angles, torques) / torques.max())
 
 
+@cache
 def _median_body(sex: str) -> tuple[float, float]:
     pop = load_population("ansur2")
     return pop.value(sex, "mass", 50.0), pop.value(sex, "stature", 50.0)
+
+
+@cache
+def _z(percentile: float) -> float:
+    """The normal quantile of a checked percentile (cached: one per figure size)."""
+    return float(norm.ppf(percentile / 100.0))
 
 
 def _spread(mean: float, sd: float | None, z: float) -> float:
@@ -160,7 +167,7 @@ def torque(kind: str, dof: str, sex: str, percentile: float, angle: float | None
     rows ignore both.
     """
     check_sex(sex)
-    z = float(norm.ppf(check_percentile(percentile) / 100.0))
+    z = _z(float(check_percentile(percentile)))
     m, h = _median_body(sex)
     m = m if mass_kg is None else float(mass_kg)
     h = h if stature_m is None else float(stature_m)
