@@ -8,7 +8,7 @@ where the figure stood when the path was begun (a figure without a path begins o
 click). The path is a Catmull-Rom spline through the points (:func:`footsteps.spline`); its
 footsteps are made at once (:func:`footsteps.from_path`, standing at both ends), so the footprints
 and the centre site's path (yellow) follow while a point is dragged. Spline stretches inside the
-keep-out outline are drawn red and named, as are footprints that land on an object (orange
+keep-out outline are drawn magenta and named, as are footprints that land on an object (orange
 outline): flagged, not refused, so that nothing the user does is lost. Every add, move and delete
 is one document command (Ctrl+Z undoes it); the points are kept with the footsteps in the
 document's ``extras["walk_plans"]`` (:mod:`jackpy.locomotion.walk_plan`) and saved with it. The
@@ -46,10 +46,12 @@ POINT_PX = 6.0  # drawn radius of a path point
 SAMPLES = 24  # spline samples per path segment (as footsteps.from_path samples it)
 GRID = 0.5  # m between the floor's grid lines
 SPLINE_COLOUR = 0xFFF0F0F0
-CROSSING_COLOUR = 0xFF3030FF  # ABGR red: the spline inside the keep-out outline
+CROSSING_COLOUR = 0xFFFF40FF  # ABGR magenta: the spline inside the keep-out outline (red is the right foot)
 LANDING_COLOUR = 0xFF00A0FF  # ABGR orange: a footprint on an object
 SELECTED_COLOUR = 0xFF40E0FF
 CONTROLS_H = 56.0  # pixels kept below the canvas for the selected point's controls
+LEGEND = ("white: the path; yellow: the centre site; magenta: through an obstacle; orange: a footprint on an "
+          "object; grey: objects and the outline the walker keeps out of")
 HINT = "Click the floor to add a point (on the path: insert one), drag a point to move it, right-click it to delete it."
 
 
@@ -301,7 +303,7 @@ def _canvas(imgui: Any, app: "App", st: dict[str, Any], fig: "Figure", path, ste
                 dl.add_circle_filled(c, POINT_PX, SPLINE_COLOUR)
             if st["selected"] == k:
                 dl.add_circle(c, POINT_PX + 3.0, SELECTED_COLOUR, 0, 2.0)
-            dl.add_text((c[0] + POINT_PX + 2.0, c[1] - 2.0 * POINT_PX - 2.0), 0xFFFFFFFF, str(k))
+            dl.add_text((c[0] + POINT_PX + 5.0, c[1] - 2.0 * POINT_PX - 5.0), 0xFFFFFFFF, str(k))
     dl.pop_clip_rect()
     mouse = (imgui.get_mouse_pos().x, imgui.get_mouse_pos().y)
     if imgui.is_item_clicked(0):
@@ -365,6 +367,9 @@ def draw(app: "App", ui: "UiState") -> None:
         else:
             imgui.text_wrapped(f"No walk yet: click the floor to begin a path from where {fig.name} stands.")
         imgui.text_wrapped(st["message"] or HINT)
+        imgui.push_text_wrap_pos(0.0)
+        imgui.text_disabled(LEGEND)
+        imgui.pop_text_wrap_pos()
         _canvas(imgui, app, st, fig, path, steps)
         _selection_controls(imgui, app, st, fig, path_of(app.doc, fig.name))
     elif visible:
