@@ -6,7 +6,9 @@ A1 fires when the balance point comes within ``edge_margin`` of the support poly
 x > 1): that (support) foot steps, the only one that can widen the base on that side. The new
 reference point is the stationary foot's reflected through the balance point, ``r' = 2 b - r_other``,
 so the balance point lands in the middle of the new polygon ((x, z) = (0.5, 0)); [proposal] the
-step is at most ``max_step`` x leg length and keeps at least ``min_width`` between the feet.
+step is at most ``max_step`` x leg length and keeps at least ``min_width`` between the feet (the
+footstep rule :func:`jackpy.locomotion.stepper.constrain_landing`, which the incremental walker
+shares).
 
 A2 fires when the pelvis yaw differs from the feet's mean yaw by more than ``twist_threshold``
 (about 45°): the lighter foot swings round the other, turned 90° in the twist direction, keeping
@@ -42,6 +44,7 @@ from jackpy.behaviors.feet import FOOT_GOALS, replace_foot_goals
 from jackpy.behaviors.hands import turn_towards
 from jackpy.behaviors.pelvis import feet_yaw, pelvis_yaw
 from jackpy.behaviors.support import convex_hull, floor, signed_distance, wrap
+from jackpy.locomotion.stepper import constrain_landing
 from jackpy.peabody.transforms import rotation_matrix
 
 if TYPE_CHECKING:
@@ -211,16 +214,10 @@ class Stepping(BehaviorBase):
         dn = float(np.linalg.norm(d))
         if dn > 1e-9:
             b = b + p.lead * d / dn
-        new = 2.0 * b - ref[other]
-        lateral = ref[swing] - ref[other]
-        lateral /= max(np.linalg.norm(lateral), 1e-9)
-        width = (new - ref[other]) @ lateral
-        if width < p.min_width:
-            new = new + (p.min_width - width) * lateral
+        # the footstep rule shared with the incremental walker (jackpy.locomotion.stepper)
+        new = constrain_landing(ref[other], ref[swing], 2.0 * b - ref[other], p.min_width,
+                                p.max_step * frame.anatomy.leg_length)
         d = new - ref[swing]
-        longest = p.max_step * frame.anatomy.leg_length
-        if np.linalg.norm(d) > longest:
-            d *= longest / np.linalg.norm(d)
         end = st.feet[swing].target.copy()
         end[[0, 2], 3] += d
         return self._start(frame, swing, "balance", end, b)

@@ -124,11 +124,16 @@ def _stop(p: GaitParams, steps: list[Footstep], c: np.ndarray, psi: float, side:
         last = last + float(np.clip(turn, -MAX_TURN, MAX_TURN))
         out.append(_foot_at(c, last, side, p.foot.width))
         side = "left" if side == "right" else "right"
-        if len(out) >= 2 and abs(out[-2].psi - psi) < 1e-12 and abs(out[-1].psi - psi) < 1e-12:
+        if len(out) >= 2 and _same(out[-2].psi, psi) and _same(out[-1].psi, psi):
             return out
-        if abs(turn) <= MAX_TURN and len(out) >= 2 and abs(out[-1].psi - psi) < 1e-12:
+        if abs(turn) <= MAX_TURN and len(out) >= 2 and _same(out[-1].psi, psi):
             out.append(_foot_at(c, last, side, p.foot.width))
             return out
+
+
+def _same(a: float, b: float) -> bool:
+    """Whether headings ``a`` and ``b`` (rad) are one direction (any multiple of 2π apart)."""
+    return abs((a - b + np.pi) % (2 * np.pi) - np.pi) < 1e-12
 
 
 def turn_in_place(p: GaitParams, c, psi0: float, psi1: float) -> list[Footstep]:
