@@ -376,3 +376,30 @@ def test_crease_normals_split_sharp_edges_and_keep_smooth_ones():
     m = Mesh.from_triangles(sphere.vertices, sphere.faces)
     assert len(m.vertices) == len(sphere.vertices)
     assert np.allclose(np.linalg.norm(m.normals, axis=1), 1.0, atol=1e-5)
+
+
+def test_a_frame_drawn_at_half_scale_is_shown_stretched_and_read_back_at_full_size(renderer):
+    """render_scale 0.5: the moving frame is drawn into a texture half the size each side (what a
+    window stretches over the view, and blit stretches); read_pixels draws it at full size again,
+    equal to a frame drawn at full size; the still frame is due (refine_pending)."""
+    s = scene(DrawItem("box", at(0.3, 0.1), RED))
+    cam = front_camera()
+    full = render(renderer, s, cam)
+    renderer.render_scale = 0.5
+    cam.yaw += 0.2  # a new frame (an unchanged one is not drawn again)
+    renderer.render(s, cam.view_matrix(), cam.projection_matrix(renderer.aspect))
+    assert renderer.color_texture.size == (W // 2, H // 2) and renderer.drawn_scale == 0.5
+    assert renderer.refine_pending
+    screen = renderer.ctx.framebuffer([renderer.ctx.renderbuffer((W, H), 4)])
+    renderer.blit(screen)
+    shown = np.frombuffer(screen.read(components=4), np.uint8).reshape(H, W, 4)[::-1]
+    img = renderer.read_pixels()
+    assert img.shape == (H, W, 4) and renderer.drawn_scale == 1.0
+    assert renderer.color_texture.size == (W, H)
+    red = (img[..., 0] > 120) & (img[..., 0] > 3 * img[..., 1])
+    shown_red = (shown[..., 0] > 120) & (shown[..., 0] > 3 * shown[..., 1])
+    assert red.sum() > 50 and abs(int(shown_red.sum()) - int(red.sum())) < 0.2 * red.sum()
+    renderer.render_scale = 1.0
+    cam.yaw -= 0.2
+    assert np.array_equal(render(renderer, s, cam)[..., :3], full[..., :3])
+    screen.release()

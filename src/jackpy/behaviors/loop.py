@@ -14,6 +14,14 @@ One :meth:`BehaviorLoop.step` is one iteration of Jack's control loop with time 
    repeat (at most ``max_passes``; the book seldom needs more than two);
 4. every enabled behavior's ``finish`` runs (attached objects follow hands, steps advance).
 
+**Time box** (:attr:`BehaviorLoop.time_box_s`, or ``step(deadline=...)``): the frame's passes end
+by the deadline. Each solve gets the time left (the body pass half of it while limb goals wait; the solves
+together at least half the box, however long the behaviors' updates took),
+less a margin the loop learns from its own frames (how far a solve has run past the budget it was
+given, and what the frame costs after the solve); once the deadline has passed no further COM pass
+starts (the report says ``timed_out``). The first pass of each part always runs, so a drag always
+moves something; the solves warm-start, so work cut from one frame goes on in the next.
+
 **User goals** (:meth:`BehaviorLoop.add_user_goal`): constraints the user adds on any site (an
 elbow kept out of a box, a head aim, a site on a plane) join the passes every frame, below the
 planted feet: a goal whose chain reaches into an arm or the neck and eyes is solved by those
@@ -28,6 +36,7 @@ The loop knows nothing of windows; it reports what it did in a :class:`FrameRepo
 
 from __future__ import annotations
 
+import time
 from collections.abc import Iterable
 from dataclasses import dataclass, field
 
@@ -38,6 +47,7 @@ from jackpy.behaviors.base import Behavior, BehaviorBase
 from jackpy.behaviors.state import BehaviorState, FootState, HandState
 from jackpy.behaviors.support import BalanceFrame, convex_hull, floor, yaw_of
 from jackpy.ik import Problem, solve
+from jackpy.ik.result import TIME_LIMIT
 from jackpy.ik.goals import GOAL_TYPES, Aim, CentreOfMass, Goal
 from jackpy.ik.goals.base import Context
 from jackpy.peabody.kinematics import FKResult
@@ -120,6 +130,10 @@ class FrameReport:
     balance: tuple[float, float]
     notes: list[str] = field(default_factory=list)
     errors: dict[str, tuple[float, float]] = field(default_factory=dict)
+    timed_out: bool = False
+    """The frame's deadline ended its COM loop or cut one of its solves."""
+    solve_s: float = 0.0
+    """Time (s) the COM loop's solves took; the rest of the frame is the behaviors' own work."""
 
 
 class Frame:
@@ -218,6 +232,14 @@ class BehaviorLoop:
         self.passes = default_pass_settings() if passes is None else dict(passes)
         #: solve the head and both arms together (one forward pass per evaluation for all three)
         self.combine_limbs = combine_limbs
+        #: time box of one :meth:`step` (s from its start; None: unbounded), see the module docstring
+        self.time_box_s: float | None = None
+        #: learned margins (s): a solve's run past its budget, and the frame's cost after its solve
+        self._overrun_s = 0.0
+        self._after_s = 0.0
+        self._deadline: float | None = None
+        self._box_s = 0.0
+        self._timed_out = False
         self.state = BehaviorState()
         #: per pass: goals kept across frames (by :func:`_goal_key`) and the last problem with the
         #: identities of its entries, so an unchanged set of goals is solved without recompiling
@@ -429,17 +451,52 @@ class BehaviorLoop:
         return [(u.goal, base + u.level) for u in self.user_goals if u.enabled and u.part == part]
 
     # ----- one frame -------------------------------------------------------------------------------
-    def step(self) -> FrameReport:
-        """Run one frame: behaviors, then the passes inside the COM loop, then the finishes."""
+    def step(self, deadline: float | None = None) -> FrameReport:
+        """Run one frame: behaviors, then the passes inside the COM loop, then the finishes.
+
+        ``deadline`` (a ``time.perf_counter()`` time) or else :attr:`time_box_s` bounds the frame's
+        solves (module docstring)."""
+        start = time.perf_counter()
+        if deadline is None and self.time_box_s is not None:
+            deadline = start + max(0.0, float(self.time_box_s))
+        self._deadline, self._timed_out = deadline, False
+        self._box_s = 0.0 if deadline is None else max(0.0, deadline - start)
         frame = Frame(self)
         active = sorted((b for b in self.behaviors if b.enabled), key=lambda b: b.order)
         for b in active:
             b.update(frame)
-        passes, com_err, errors = self._solve(frame)
+        begun = time.perf_counter()
+        if deadline is not None:  # the solves keep half the box whatever the behaviors took
+            self._deadline = max(deadline, begun + 0.5 * self._box_s)
+        try:
+            passes, com_err, errors = self._solve(frame)
+        finally:
+            self._deadline = None
+        solved = time.perf_counter()
         frame._refresh()
         for b in active:
             b.finish(frame)
-        return FrameReport(passes, com_err, self.state.root, frame.balance_params(), frame.notes, errors)
+        report = FrameReport(passes, com_err, self.state.root, frame.balance_params(), frame.notes, errors,
+                             self._timed_out, solved - begun)
+        if deadline is not None:
+            self._after_s = _learn(self._after_s, time.perf_counter() - solved)
+        return report
+
+    def _margin(self, estimate: float) -> float:
+        """A learned margin (s), at most a tenth of the frame's box: one slow frame (a first
+        compile, a busy machine) must not starve the next frames' solves."""
+        return min(estimate, 0.1 * self._box_s)
+
+    def _budget(self, share: float = 1.0) -> float | None:
+        """Seconds the next solve may take: ``share`` of what is left before the deadline, less the
+        learned margins (None: no deadline). Never negative."""
+        if self._deadline is None:
+            return None
+        left = self._deadline - time.perf_counter() - self._margin(self._after_s)
+        return max(0.0, share * left - self._margin(self._overrun_s))
+
+    def _expired(self) -> bool:
+        return self._deadline is not None and time.perf_counter() >= self._deadline - self._margin(self._after_s)
 
     def _solve(self, frame: Frame) -> tuple[int, float, dict[str, tuple[float, float]]]:
         errors: dict[str, tuple[float, float]] = {}
@@ -460,8 +517,13 @@ class BehaviorLoop:
             limbs = [(g, lv) for goals in limb_goals.values() for g, lv in goals]
             owner = [k if i < n_own[k] else "user" for k, goals in limb_goals.items() for i in range(len(goals))]
         passes = 0
+        limbs_wait = any(limb_goals.values())
         for passes in range(1, self.max_passes + 1):
-            per_body = self._solve_pass(body, body_pass)
+            if passes > 1 and self._expired():
+                self._timed_out = True  # the time box ends the COM loop: the next frame goes on
+                passes -= 1
+                break
+            per_body = self._solve_pass(body, body_pass, share=0.5 if limbs_wait else 1.0)
             errors["body"] = _worst(per_body[:n_body])
             user_errs = per_body[n_body:]
             if self.combine_limbs:
@@ -526,9 +588,11 @@ class BehaviorLoop:
         self._problems[which] = (key, problem)
         return problem
 
-    def _solve_pass(self, goals: list[tuple[Goal, int]], which: str) -> list[tuple[float, float]]:
+    def _solve_pass(self, goals: list[tuple[Goal, int]], which: str,
+                    share: float = 1.0) -> list[tuple[float, float]]:
         """Solve ``goals`` (goal, priority level) moving only the joints of pass ``which`` within its
-        budget (:class:`PassSettings`); returns each goal's residual (m, deg)."""
+        budget (:class:`PassSettings`) and ``share`` of the time left in the frame's box; returns
+        each goal's residual (m, deg)."""
         if not goals:
             return []
         problem = self.problem_for(goals, which)
@@ -539,8 +603,13 @@ class BehaviorLoop:
         held = self._held(problem, tol, tol_angle)
         if held is not None:
             return held
+        budget = self._budget(share)
+        t0 = time.perf_counter()
         result = solve(problem, max_iterations=min(ps.iterations, self.max_iterations), tol_position=tol,
-                       tol_angle=tol_angle)
+                       tol_angle=tol_angle, time_budget_s=budget)
+        if budget is not None:
+            self._overrun_s = _learn(self._overrun_s, time.perf_counter() - t0 - budget)
+            self._timed_out |= result.status == TIME_LIMIT
         return [(g.metres, g.degrees) for g in result.goals]
 
     def _held(self, problem: Problem, tol: float, tol_angle: float) -> list[tuple[float, float]] | None:
@@ -562,6 +631,12 @@ class BehaviorLoop:
                 return None
             out.append((e.metres, e.degrees))
         return out
+
+
+def _learn(estimate: float, sample: float) -> float:
+    """A cost estimate (s, >= 0): half way to a higher sample, a fifth of the way to a lower one."""
+    w = 0.5 if sample > estimate else 0.2
+    return max(0.0, estimate + w * (sample - estimate))
 
 
 def _worst(errs: list[tuple[float, float]]) -> tuple[float, float]:

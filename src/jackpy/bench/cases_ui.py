@@ -9,6 +9,13 @@ time counts); ``draw_ms`` is that frame less the solve. The renderer is made as 
 it (``samples=None``: 4x MSAA on a GPU, none on a software rasteriser; ``renderer`` in the extras
 says which). The row's median is the plain default scene; ``with_cad_*`` repeats it with a
 100k-triangle CAD object in the scene.
+
+The App runs with its frame budget (:mod:`jackpy.ui.frame_budget`, the workbench's default:
+30 frames/s, adaptive quality); the baseline is the same drag with the budget's adaptation off (the
+full quality and the document's 30 ms box, the frame loop before the budget), on a second App and
+renderer in the same EGL context, in alternating blocks of frames so that both see the same load.
+``fps`` is 1000 / the median frame; ``overruns`` counts frames whose solve took more than 1.2 times
+its box; ``levels`` how many frames ran on each rung of the quality ladder.
 """
 
 from __future__ import annotations
@@ -17,7 +24,8 @@ import time
 
 import numpy as np
 
-from jackpy.bench.runner import Case, Result, time_calls
+from jackpy.bench.runner import Case, Result
+from jackpy.ui.frame_budget import OVERRUN
 
 SIZE = (1280, 800)
 
@@ -34,58 +42,104 @@ def _cad_object(triangles: int = 100_000):
     return obj
 
 
-def _frame_timer(with_cad: bool, repeat: int):
-    from jackpy.ui.app import MOUSE_LEFT, PRESS, App, find_effectors
-    from jackpy.render import offscreen_renderer
-    from jackpy.ui.session import default_scene
+class _Drag:
+    """One App dragging the right hand on its own renderer (``ctx`` shared), frame by frame."""
 
-    env, _ = default_scene()
-    renderer = offscreen_renderer(*SIZE, samples=None)  # as the window's: automatic MSAA
-    ctx = renderer.ctx
-    screen_rb = ctx.renderbuffer(SIZE, 4)
-    screen = ctx.framebuffer([screen_rb])
-    app = App(env, renderer, SIZE)
-    if with_cad:
-        env.add(_cad_object())  # a CADObject: drawn translucent by its type
-    app.camera.set_preset("front")
-    app.step()
-    fig = app.figure_of_interest()
-    hand = fig.site_world(*find_effectors(fig)["right_hand"].split("."))[:3, 3]
-    p0 = app.world_to_pixel(hand)
-    p1 = app.world_to_pixel(hand + [0.25, 0.1, 0.0])
-    app.on_cursor_pos(*p0)
-    app.on_mouse_button(MOUSE_LEFT, PRESS, 0)
-    path = [p0 + (p1 - p0) * (0.5 - 0.5 * np.cos(t)) for t in np.linspace(0.0, 4 * np.pi, 97)]
-    state = {"k": 0, "solve": [], "draw": []}
+    def __init__(self, ctx, with_cad: bool, adaptive: bool) -> None:
+        from jackpy.ui.app import MOUSE_LEFT, PRESS, App, find_effectors
+        from jackpy.render import offscreen_renderer
+        from jackpy.ui.session import default_scene
 
-    def frame() -> None:
-        state["k"] = (state["k"] + 1) % len(path)
-        app.on_cursor_pos(*path[state["k"]])
+        env, _ = default_scene()
+        self.renderer = offscreen_renderer(*SIZE, samples=None, ctx=ctx)  # as the window's: automatic MSAA
+        self.ctx = self.renderer.ctx
+        self.screen_rb = self.ctx.renderbuffer(SIZE, 4)
+        self.screen = self.ctx.framebuffer([self.screen_rb])
+        app = self.app = App(env, self.renderer, SIZE)
+        app.frame_budget.adaptive = adaptive
+        if with_cad:
+            env.add(_cad_object())  # a CADObject: drawn translucent by its type
+        app.camera.set_preset("front")
+        app.step()
+        fig = app.figure_of_interest()
+        hand = fig.site_world(*find_effectors(fig)["right_hand"].split("."))[:3, 3]
+        p0 = app.world_to_pixel(hand)
+        p1 = app.world_to_pixel(hand + [0.25, 0.1, 0.0])
+        app.on_cursor_pos(*p0)
+        app.on_mouse_button(MOUSE_LEFT, PRESS, 0)
+        self.path = [p0 + (p1 - p0) * (0.5 - 0.5 * np.cos(t)) for t in np.linspace(0.0, 4 * np.pi, 97)]
+        self.k = 0
+        self.frame_ms: list[float] = []
+        self.solve: list[float] = []
+        self.draw: list[float] = []
+        self.levels: dict[int, int] = {}
+        self.overruns = 0
+
+    def frame(self, record: bool = True) -> None:
+        self.k = (self.k + 1) % len(self.path)
+        self.app.on_cursor_pos(*self.path[self.k])
         t0 = time.perf_counter()
-        stats = app.step()
-        renderer.blit(screen)
-        ctx.finish()
-        state["solve"].append(stats.solve_s * 1e3)
+        stats = self.app.step()
+        self.renderer.blit(self.screen)
+        self.ctx.finish()
+        ms = (time.perf_counter() - t0) * 1e3
+        if not record:
+            return
+        self.frame_ms.append(ms)
+        self.solve.append(stats.solve_s * 1e3)
         # the draw as the frame pays it: scene build and submit (App's draw_s) plus the GPU work
         # that finishes in the blit and ctx.finish()
-        state["draw"].append((time.perf_counter() - t0 - stats.solve_s) * 1e3)
+        self.draw.append(ms - stats.solve_s * 1e3)
+        self.levels[stats.level] = self.levels.get(stats.level, 0) + 1
+        self.overruns += stats.solved and stats.solve_s > OVERRUN * stats.box_s
 
-    timing = time_calls(frame, repeat=repeat, warmup=5)
-    info = f"{ctx.info.get('GL_RENDERER', '?').split(' (')[0]} {renderer.samples}x"
-    screen.release()
-    screen_rb.release()
-    renderer.release()
-    return timing, float(np.median(state["solve"])), float(np.median(state["draw"])), info
+    def figures(self, tag: str) -> dict:
+        f = np.array(self.frame_ms)
+        return {f"{tag}median_ms": float(np.median(f)), f"{tag}p90_ms": float(np.percentile(f, 90)),
+                f"{tag}fps": 1e3 / float(np.median(f)), f"{tag}solve_ms": float(np.median(self.solve)),
+                f"{tag}solve_p90_ms": float(np.percentile(self.solve, 90)),
+                f"{tag}draw_ms": float(np.median(self.draw)), f"{tag}overruns": int(self.overruns),
+                f"{tag}frames": len(f)}
+
+    def release(self) -> None:
+        self.screen.release()
+        self.screen_rb.release()
+        self.renderer.release()
+
+
+def _interleaved(with_cad: bool, repeat: int, block: int = 10) -> tuple[_Drag, _Drag]:
+    """The drag with the frame budget and without (adaptation off), in alternating blocks."""
+    from jackpy.render import create_egl_context
+
+    ctx = create_egl_context()
+    ours, base = _Drag(ctx, with_cad, True), _Drag(ctx, with_cad, False)
+    for d in (ours, base):
+        for _ in range(5):
+            d.frame(record=False)
+    while len(ours.frame_ms) < repeat:
+        for d in (ours, base):
+            for _ in range(2):
+                d.frame(record=False)  # the other App's frame period is not this one's
+            for _ in range(block):
+                d.frame()
+    return ours, base
 
 
 def _ui_frame(quick: bool) -> Result:
     repeat = 30 if quick else 150
-    plain, solve, draw, info = _frame_timer(False, repeat)
-    cad, cad_solve, cad_draw, _ = _frame_timer(True, repeat)
-    return Result("ui-frame", plain.median_ms, plain.p90_ms, None, {
-        "solve_ms": solve, "draw_ms": draw, "with_cad_ms": cad.median_ms, "with_cad_p90_ms": cad.p90_ms,
-        "with_cad_draw_ms": cad_draw, "size": f"{SIZE[0]}x{SIZE[1]}", "renderer": info})
+    ours, base = _interleaved(False, repeat)
+    info = f"{ours.ctx.info.get('GL_RENDERER', '?').split(' (')[0]} {ours.renderer.samples}x"
+    cad, _cad_base = _interleaved(True, repeat // 2)
+    extra = {**ours.figures(""), **base.figures("fixed_"), "levels": dict(sorted(ours.levels.items())),
+             "with_cad_ms": float(np.median(cad.frame_ms)), "with_cad_p90_ms": float(np.percentile(cad.frame_ms, 90)),
+             "with_cad_fixed_ms": float(np.median(_cad_base.frame_ms)), "size": f"{SIZE[0]}x{SIZE[1]}",
+             "renderer": info}
+    result = Result("ui-frame", extra["median_ms"], extra["p90_ms"], extra["fixed_median_ms"], extra)
+    for d in (ours, base, cad, _cad_base):
+        d.release()
+    return result
 
 
-CASES = [Case("ui-frame", _ui_frame, "workbench frame (IK + offscreen draw) while dragging a hand, "
-                                      "without / with a 100k-triangle CAD object")]
+CASES = [Case("ui-frame", _ui_frame, "workbench frame (IK + offscreen draw) while dragging a hand with the "
+                                      "frame budget (baseline: adaptation off), without / with a "
+                                      "100k-triangle CAD object")]

@@ -31,7 +31,7 @@ from jackpy.document.settings import Settings
 from jackpy.document.undo import UndoStack
 from jackpy.errors import JackpyError
 from jackpy.ik.problem import Problem
-from jackpy.ik.result import ITERATION_LIMIT
+from jackpy.ik.result import ITERATION_LIMIT, TIME_LIMIT
 from jackpy.ik.solver import solve as ik_solve
 from jackpy.peabody import Environment, Figure
 from jackpy.peabody.transforms import rigid_inverse
@@ -64,19 +64,40 @@ class DocumentState:
 
 
 @dataclass
+class SolveLimits:
+    """How much one :meth:`Document.step` may solve (the frame loop's quality, see
+    :mod:`jackpy.ui.frame_budget`): the time box ``box_s`` (s; None: ``settings.ik_time_budget_s``),
+    and caps on every behavior pass's solver iterations and on the COM loop's passes (None: the
+    loops' own settings)."""
+
+    box_s: float | None = None
+    iterations: int | None = None
+    passes: int | None = None
+
+
+@dataclass
 class StepStats:
-    """What one :meth:`Document.step` did: solve time (s) and iterations or behavior frames."""
+    """What one :meth:`Document.step` did: solve time (s), iterations or behavior frames, and the
+    time box it had (s) and whether the box cut the solve short."""
 
     solve_s: float = 0.0
     iterations: int = 0
     solved: bool = False
+    box_s: float = 0.0
+    timed_out: bool = False
+    behaviors_s: float = 0.0
+    """Of ``solve_s``, the behaviors' own work (updates and finishes, outside the IK solves)."""
 
 
-def solve_goals(env: Environment, goals: list[GoalEntry], budget_s: float) -> tuple[int, bool]:
+def solve_goals(env: Environment, goals: list[GoalEntry], budget_s: float,
+                deadline: float | None = None) -> tuple[int, bool]:
     """Solve each figure's enabled goals (priority = level, 0 first) from its current posture by
     plain IK, in slices of :data:`ITERATIONS_PER_CALL` iterations until the goals are achieved, the
-    solver stops improving, or ``budget_s`` seconds have passed. Returns (iterations, settled)."""
+    solver stops improving, or ``budget_s`` seconds have passed (or the ``time.perf_counter()``
+    ``deadline``, whichever is first: the solver starts no evaluation after it). Returns
+    (iterations, settled)."""
     start = time.perf_counter()
+    end = start + budget_s if deadline is None else min(deadline, start + budget_s)
     iterations, settled = 0, True
     for fig in env.figures.values():
         mine = [g for g in goals if g.figure == fig.name and g.enabled and g.role != EYES]
@@ -86,12 +107,13 @@ def solve_goals(env: Environment, goals: list[GoalEntry], budget_s: float) -> tu
         for g in mine:
             problem.add(g.goal, level=max(0, g.priority))
         while True:
-            result = ik_solve(problem, max_iterations=ITERATIONS_PER_CALL)
+            result = ik_solve(problem, max_iterations=ITERATIONS_PER_CALL,
+                              time_budget_s=max(0.0, end - time.perf_counter()))
             iterations += result.iterations
-            if result.status != ITERATION_LIMIT:
-                break
-            if time.perf_counter() - start >= budget_s:
+            if result.status == TIME_LIMIT or (result.status == ITERATION_LIMIT and time.perf_counter() >= end):
                 settled = False
+                break
+            if result.status != ITERATION_LIMIT:
                 break
     return iterations, settled
 
@@ -131,6 +153,9 @@ class Document:
         "did anything happen")."""
         self._handed: dict[str, dict[str, tuple[BehaviorLoop, GoalEntry, tuple, UserGoal | None]]] = {}
         self._settle = 0
+        self._timed_out = False
+        self._behaviors_s = 0.0
+        self._frame_s = 0.0  # the last behavior frame's cost: a frame starts only if it fits the box
         self._edit_state: DocumentState | None = None
         self.set_environment(env if env is not None else Environment(), goals)
 
@@ -379,10 +404,18 @@ class Document:
         return True
 
     # ------------------------------------------------------------------ the step
-    def step(self, dt: float = 0.0) -> StepStats:
+    def step(self, dt: float = 0.0, limits: SolveLimits | None = None) -> StepStats:
         """One step: the timeline (when set and playing, ``time`` advances by ``dt`` s), then, when
-        goals changed, goals → behaviors → IK → FK within the time box, then the live analyses."""
+        goals changed, goals → behaviors → IK → FK within the time box, then the live analyses.
+
+        Without ``limits`` (scripts, tests) the settings' box counts whole behavior frames: each
+        runs to its end, another starts while the box lasts (so the result does not depend on the
+        machine's speed within a frame). ``limits`` (the frame loop's) make the box strict: every
+        solve ends by its deadline (:meth:`solve`), and cap the loops' iterations and passes."""
         stats = StepStats()
+        strict = limits is not None
+        limits = limits or SolveLimits()
+        stats.box_s = self.settings.ik_time_budget_s if limits.box_s is None else max(0.0, limits.box_s)
         if self.timeline is not None and self.playing:
             self.time += float(dt)
             self.timeline.apply(self.time, self.loops, self.env)
@@ -390,42 +423,71 @@ class Document:
             self._settle = 0
         if self.needs_solve:
             t0 = time.perf_counter()
-            stats.iterations, settled = self.solve()
+            saved = {n: (lp.max_iterations, lp.max_passes) for n, lp in self.loops.items()}
+            try:
+                for lp in self.loops.values():
+                    if limits.iterations is not None:
+                        lp.max_iterations = max(1, min(lp.max_iterations, int(limits.iterations)))
+                    if limits.passes is not None:
+                        lp.max_passes = max(1, min(lp.max_passes, int(limits.passes)))
+                stats.iterations, settled = self.solve(stats.box_s, strict)
+            finally:
+                for n, (it, ps) in saved.items():
+                    self.loops[n].max_iterations, self.loops[n].max_passes = it, ps
             stats.solve_s = time.perf_counter() - t0
             stats.solved = True
+            stats.timed_out = self._timed_out
+            stats.behaviors_s = self._behaviors_s
             self.needs_solve = not settled
         self.analyses.refresh(self.env)
         return stats
 
-    def solve(self) -> tuple[int, bool]:
-        """Solve for every figure with enabled goals, within the time box.
+    def solve(self, box_s: float | None = None, strict: bool = False) -> tuple[int, bool]:
+        """Solve for every figure with enabled goals, within the time box ``box_s`` (s; default
+        ``settings.ik_time_budget_s``).
 
         Humans with a behavior loop (when ``settings.behaviors``) run :meth:`BehaviorLoop.step`
-        frames; every other figure is solved by plain IK on its goals. Returns (iterations or
-        behavior frames, settled): settled when the goals are met or the solve stalls.
+        frames while the box lasts; every other figure is solved by plain IK on its goals in the
+        rest of the box. ``strict``: each behavior frame's solves end by the box's deadline, and
+        another frame starts only while the last one's cost still fits in what is left. Returns
+        (iterations or behavior frames, settled): settled when the goals are met or the solve
+        stalls.
         """
         start = time.perf_counter()
-        budget = self.settings.ik_time_budget_s
+        budget = self.settings.ik_time_budget_s if box_s is None else box_s
+        deadline = start + budget
         count, settled = 0, True
+        self._timed_out, self._behaviors_s = False, 0.0
         driven = self.behavior_figures()
         for name in driven:
             loop, fig = self.loops[name], self.env.figures[name]
             self.hand_user_goals(name)
             while True:
                 q0 = fig.q.copy()
-                self.last_report = loop.step()
+                f0 = time.perf_counter()
+                self.last_report = loop.step(deadline=deadline if strict else None)
+                self._frame_s = time.perf_counter() - f0
+                self._timed_out |= self.last_report.timed_out
+                self._behaviors_s += self._frame_s - self.last_report.solve_s
                 count += 1
                 self._settle += 1
                 moved = float(np.max(np.abs(fig.q - q0), initial=0.0))
-                if moved < SETTLED_DQ or self._settle >= self.settings.settle_frames:
+                if self._settle >= self.settings.settle_frames:
                     break
-                if time.perf_counter() - start >= budget:
+                if self.last_report.timed_out:  # cut short: not settled, whatever it moved
+                    settled = False
+                    break
+                if moved < SETTLED_DQ:
+                    break
+                if time.perf_counter() + (self._frame_s if strict else 0.0) >= deadline:
                     settled = False
                     break
         rest = [g for g in self.goals if g.figure not in driven]
         if rest:
-            it, ok = solve_goals(self.env, rest, max(0.0, budget - (time.perf_counter() - start)))
+            it, ok = solve_goals(self.env, rest, max(0.0, deadline - time.perf_counter()),
+                                 deadline if strict else None)
             count, settled = count + it, settled and ok
+            self._timed_out |= not ok
         return count, settled
 
     # ------------------------------------------------------------------ behaviors

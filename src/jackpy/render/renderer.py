@@ -16,6 +16,9 @@ re-uploaded only where it changed; passes with nothing to draw are skipped. The 
 is a setting: 4x on a hardware GPU, none on a software rasteriser (llvmpipe, softpipe), where
 multisampling costs several times the whole frame; there a frame that stays unchanged for
 ``refine_after_s`` is drawn once more at ``still_samples`` (4x), so a still image is anti-aliased.
+:attr:`Renderer.render_scale` (< 1: the frame loop's cheaper draw while things move) draws moving
+frames into a smaller framebuffer, shown stretched; the still frame is drawn at full size again,
+and picking, :meth:`Renderer.read_pixels` and :meth:`Renderer.read_ids` always work at full size.
 """
 
 from __future__ import annotations
@@ -155,6 +158,9 @@ class Renderer:
             still_samples = HARDWARE_SAMPLES if samples is None else self.samples
         self.still_samples = max(self.samples, min(still_samples, ctx.max_samples))
         self.refine_after_s = 0.3
+        self.render_scale = 1.0
+        """Fraction (0.25-1) of :attr:`size` that moving frames are drawn at (each side); the
+        still frame and every read-back are full size."""
         self.display_triangles: int | None = SOFTWARE_DISPLAY_TRIANGLES if self.software else None
         """Triangle budget for a CAD object's display copy (see ``SceneView.upload``)."""
         self._mesh_program = ctx.program(vertex_shader=shaders.MESH_VERTEX,
@@ -174,6 +180,9 @@ class Renderer:
         corners = np.array([-1, -1, 1, -1, 1, 1, -1, -1, 1, 1, -1, 1], np.float32)
         self._grid_vbo = ctx.buffer(corners.tobytes())
         self._grid_vao = ctx.vertex_array(self._grid_program, [(self._grid_vbo, "2f", "in_corner")])
+        self._present_program = ctx.program(vertex_shader=shaders.PRESENT_VERTEX,
+                                            fragment_shader=shaders.PRESENT_FRAGMENT)
+        self._present_vao = ctx.vertex_array(self._present_program, [])
         self._line_capacity = 0
         self._line_vbo: moderngl.Buffer | None = None
         self._line_vao: moderngl.VertexArray | None = None
@@ -192,6 +201,8 @@ class Renderer:
         self._key_since = 0.0
         self.drawn_samples = -1
         """MSAA samples of the image in :attr:`color_texture` (-1: nothing drawn yet)."""
+        self.drawn_scale = 1.0
+        """The :attr:`render_scale` the image in :attr:`color_texture` was drawn at."""
         self.frames_drawn = 0
         """Frames actually drawn (a :meth:`render` of an unchanged frame draws nothing)."""
 
@@ -203,17 +214,39 @@ class Renderer:
             for obj in objs:
                 obj.release()
         self._msaa = {}
+        for fbo, objs in getattr(self, "_scaled", {}).values():
+            for obj in objs:
+                obj.release()
+        self._scaled: dict[tuple[int, int], tuple[moderngl.Framebuffer, list]] = {}
         ctx, self.size = self.ctx, (int(size[0]), int(size[1]))
-        self.color_texture = ctx.texture(self.size, 4)
+        self._full_texture = ctx.texture(self.size, 4)
+        self.color_texture = self._full_texture
+        """The texture holding the last drawn image (smaller than :attr:`size` when it was drawn at
+        a :attr:`render_scale` below 1; a window shows it stretched over the view)."""
         depth = ctx.depth_renderbuffer(self.size)
-        self._resolve_fbo = ctx.framebuffer([self.color_texture], depth)
+        self._resolve_fbo = ctx.framebuffer([self._full_texture], depth)
         pick_tex = ctx.texture(self.size, 1, dtype="i4")
         pick_tex.filter = (moderngl.NEAREST, moderngl.NEAREST)
         pick_depth = ctx.depth_texture(self.size)
         self._pick_fbo = ctx.framebuffer([pick_tex], pick_depth)
-        self._framebuffers = [self._resolve_fbo, self._pick_fbo, self.color_texture, depth, pick_tex, pick_depth]
+        self._framebuffers = [self._resolve_fbo, self._pick_fbo, self._full_texture, depth, pick_tex, pick_depth]
         self._frame_key = None
         self.drawn_samples = -1
+        self.drawn_scale = 1.0
+
+    def _scaled_size(self, scale: float) -> tuple[int, int]:
+        s = min(1.0, max(0.25, float(scale)))
+        return max(1, round(self.size[0] * s)), max(1, round(self.size[1] * s))
+
+    def _scaled_target(self, size: tuple[int, int]) -> tuple[moderngl.Framebuffer, moderngl.Texture]:
+        """The single-sample framebuffer (and its colour texture) of a frame drawn at ``size``."""
+        if size not in self._scaled:
+            tex = self.ctx.texture(size, 4)
+            depth = self.ctx.depth_renderbuffer(size)
+            fbo = self.ctx.framebuffer([tex], depth)
+            self._scaled[size] = (fbo, [fbo, tex, depth])
+        fbo, objs = self._scaled[size]
+        return fbo, objs[1]
 
     def _target(self, samples: int) -> moderngl.Framebuffer:
         """The framebuffer a frame with ``samples`` is drawn into: the resolve target itself when
@@ -293,7 +326,7 @@ class Renderer:
     def refine_pending(self) -> bool:
         """Whether the image on show was drawn with fewer samples than a still frame gets: a later
         :meth:`render` (or :meth:`refine`) of the same frame will draw it again, anti-aliased."""
-        return 0 <= self.drawn_samples < self.still_samples
+        return 0 <= self.drawn_samples and (self.drawn_samples < self.still_samples or self.drawn_scale < 1.0)
 
     def render(self, scene: Scene, view: np.ndarray, projection: np.ndarray) -> bool:
         """Draw ``scene`` seen through 4x4 ``view`` (world to camera) and ``projection``.
@@ -314,31 +347,44 @@ class Renderer:
         now = time.monotonic()
         if key != self._frame_key:
             self._frame_key, self._key_since = key, now
-            samples = self.samples
+            samples, scale = self.samples, self.render_scale
         elif self.refine_pending and now - self._key_since >= self.refine_after_s:
-            samples = self.still_samples
+            samples, scale = self.still_samples, 1.0
         else:
             return False
-        self._draw_frame(scene, batches, skins, view, projection, samples)
+        self._draw_frame(scene, batches, skins, view, projection, samples, scale)
         return True
 
     def refine(self) -> bool:
-        """Redraw the last frame at :attr:`still_samples` now if it was drawn with fewer."""
+        """Redraw the last frame at :attr:`still_samples` and full size now if it was drawn with
+        fewer samples or smaller."""
         if self._last is None or self._last_scene is None or not self.refine_pending:
             return False
         batches, _, view, projection = self._last
         self._draw_frame(self._last_scene, batches, self._last_skins, view, projection, self.still_samples)
         return True
 
+    def _full_size(self) -> None:
+        """Redraw the last frame at full size (same samples) if it was drawn smaller."""
+        if self.drawn_scale < 1.0 and self._last is not None and self._last_scene is not None:
+            batches, _, view, projection = self._last
+            self._draw_frame(self._last_scene, batches, self._last_skins, view, projection, self.drawn_samples)
+
     def _draw_frame(self, scene: Scene, batches: FrameBatches, skins: list[tuple[str, np.ndarray]],
-                    view: np.ndarray, projection: np.ndarray, samples: int) -> None:
-        ctx, fbo = self.ctx, self._target(samples)
+                    view: np.ndarray, projection: np.ndarray, samples: int, scale: float = 1.0) -> None:
+        ctx = self.ctx
+        size = self._scaled_size(scale)
+        if size == self.size:
+            fbo, texture, scale = self._target(samples), self._full_texture, 1.0
+        else:  # a moving frame drawn smaller: single-sampled
+            (fbo, texture), samples = self._scaled_target(size), 0
         centers = {k: m.center for k, m in self._meshes.items()}
         transparent = item_batches(back_to_front(batches.transparent, view, centers))
         lines = [ln for ln in scene.lines if not ln.on_top] + [ln for ln in scene.lines if ln.on_top]
         n_under, n_top = self._upload_lines(lines)
 
         fbo.use()
+        ctx.viewport = (0, 0, *size)
         fbo.depth_mask = True
         fbo.clear(*rgba(scene.background, 1)[0], depth=1.0)
         ctx.enable(moderngl.DEPTH_TEST)
@@ -379,8 +425,10 @@ class Renderer:
         fbo.depth_mask = True
         ctx.disable(moderngl.BLEND)
 
-        if fbo is not self._resolve_fbo:
+        if samples and texture is self._full_texture:
             ctx.copy_framebuffer(self._resolve_fbo, fbo)
+        self.color_texture = texture
+        self.drawn_scale = scale
         pickable = [i for i in batches.transparent if i.pick_id is not None]
         self._last = (batches, item_batches(pickable), np.array(view), np.array(projection))
         self._last_skins = skins
@@ -462,14 +510,26 @@ class Renderer:
 
     # ------------------------------------------------------------------ output
     def read_pixels(self) -> np.ndarray:
-        """The last rendered image, (height, width, 4) uint8 RGBA, first row at the top."""
+        """The last rendered image at full size, (height, width, 4) uint8 RGBA, first row at the
+        top (a frame drawn smaller is drawn again at full size first)."""
+        self._full_size()
         w, h = self.size
         data = self._resolve_fbo.read(components=4, alignment=1)  # the colour attachment
         return np.frombuffer(data, np.uint8).reshape(h, w, 4)[::-1].copy()
 
     def blit(self, destination: moderngl.Framebuffer) -> None:
-        """Copy the last rendered image into ``destination`` (e.g. a window's ``ctx.screen``)."""
-        self.ctx.copy_framebuffer(destination, self._resolve_fbo)
+        """Copy the last rendered image into ``destination`` (e.g. a window's ``ctx.screen``); one
+        drawn smaller is stretched over it (bilinear), as a window shows :attr:`color_texture`."""
+        if self.color_texture is self._full_texture:
+            self.ctx.copy_framebuffer(destination, self._resolve_fbo)
+            return
+        ctx = self.ctx
+        destination.use()
+        ctx.viewport = (0, 0, *destination.size)
+        ctx.disable(moderngl.DEPTH_TEST | moderngl.BLEND | moderngl.CULL_FACE)
+        self.color_texture.use(0)
+        self._present_program["u_image"].value = 0
+        self._present_vao.render(moderngl.TRIANGLES, vertices=3)
 
     def save_png(self, path: str | Path) -> None:
         """Write the last rendered image to a PNG file."""

@@ -185,3 +185,24 @@ void main() {
     f_color = c;
 }
 """
+
+PRESENT_VERTEX = """
+#version 330 core
+// one triangle covering the viewport, no vertex buffer: texture coordinates 0..1 on screen
+out vec2 v_uv;
+void main() {
+    vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));
+    v_uv = p;
+    gl_Position = vec4(2.0 * p - 1.0, 0.0, 1.0);
+}
+"""
+
+PRESENT_FRAGMENT = """
+#version 330 core
+uniform sampler2D u_image;
+in vec2 v_uv;
+out vec4 f_color;
+void main() {
+    f_color = texture(u_image, v_uv);
+}
+"""

@@ -38,6 +38,7 @@ from jackpy.document.goals import EYES
 from jackpy.peabody import Environment, Figure
 from jackpy.ui.analysis_overlays import AnalysisState
 from jackpy.ui.camera import NavAction, OrbitCamera, navigation_action
+from jackpy.ui.frame_budget import FrameBudget
 from jackpy.ui.manipulator import Manipulator
 from jackpy.ui.preferences import Preferences
 from jackpy.ui.scene_view import GoalPick, Overlay, SceneView, SegmentPick, is_object
@@ -56,11 +57,18 @@ _BUTTON_NAMES = {MOUSE_LEFT: "left", MOUSE_MIDDLE: "middle", MOUSE_RIGHT: "right
 
 @dataclass
 class FrameStats:
-    """Timings of one frame (s)."""
+    """Timings of one frame (s), the solve's time box (s) and whether it solved, and the frame
+    budget's rung (:mod:`jackpy.ui.frame_budget`)."""
 
     solve_s: float = 0.0
     draw_s: float = 0.0
     iterations: int = 0
+    box_s: float = 0.0
+    solved: bool = False
+    timed_out: bool = False
+    level: int = 0
+    drawn: bool = False
+    behaviors_s: float = 0.0
 
 
 # ---------------------------------------------------------------------- operator targets
@@ -173,7 +181,9 @@ class App:
         """A :class:`~jackpy.behaviors.sensor_drive.SensorDrive` (Devices panel), if connected."""
         self.driving = False
         """While True every frame runs one sensor-drive frame (the sensors move the figure)."""
-        self._last_step = time.monotonic()
+        self._last_step = time.perf_counter()
+        self.frame_budget = FrameBudget()
+        """Adaptive quality: each frame's solve box, iteration caps and draw scale (status bar)."""
         self.preferences = Preferences.load()
         """The user's preferences ($JACKPY_HOME/preferences.json): mouse preset, dialogs, recent files."""
         self.set_document(doc if doc is not None else Document(env, settings))
@@ -512,31 +522,46 @@ class App:
     # ------------------------------------------------------------------ frame
     def step(self) -> FrameStats:
         """One frame after the input handlers ran: a sensor-drive frame or the document's step
-        (solve when goals changed, then the live analyses), then the draw."""
+        (solve when goals changed, then the live analyses), then the draw. The frame budget plans
+        the frame (the solve's box and caps, the draw's scale) from the frames before it."""
         stats = FrameStats()
-        now = time.monotonic()
+        now = time.perf_counter()
         dt, self._last_step = now - self._last_step, now
+        prev = self.stats
+        self.frame_budget.record(dt, prev.solve_s, prev.box_s, prev.solved, prev.drawn, prev.behaviors_s)
+        plan = self.frame_budget.plan(self.settings.ik_time_budget_s)
+        stats.level = plan.level
         if self.driving and self.sensor_drive is not None:
             t0 = time.perf_counter()
+            loop = getattr(self.sensor_drive, "loop", None)
+            if isinstance(loop, BehaviorLoop):
+                loop.time_box_s = plan.limits.box_s if plan.limits is not None else None
             try:
                 report = self.sensor_drive.step()  # type: ignore[attr-defined]
                 self.doc.last_report = report.loop or self.doc.last_report
+                stats.timed_out = bool(report.loop is not None and report.loop.timed_out)
             except Exception as exc:  # a device error stops the drive, the window goes on
                 self.driving = False
                 self.info(f"error: sensor drive stopped: {exc}")
             stats.solve_s = time.perf_counter() - t0
+            stats.box_s, stats.solved = self.frame_budget.box_s, True
             self.doc.dirty = True
             self.doc.analyses.refresh(self.env)
         else:
             was = self.doc.needs_solve
-            s = self.doc.step(dt)
+            s = self.doc.step(dt, plan.limits)
             stats.solve_s, stats.iterations = s.solve_s, s.iterations
+            stats.box_s, stats.solved, stats.timed_out = s.box_s, s.solved, s.timed_out
+            stats.behaviors_s = s.behaviors_s
             if was and self.manipulator.active:
                 self.doc.needs_solve = True  # a drag keeps solving while the button is held
         if self.renderer is not None:
+            self.renderer.render_scale = plan.render_scale
+            drawn = self.renderer.frames_drawn
             t0 = time.perf_counter()
             self.draw()
             stats.draw_s = time.perf_counter() - t0
+            stats.drawn = self.renderer.frames_drawn != drawn
         self.stats = stats
         return stats
 

@@ -6,8 +6,10 @@ view for ``TOAST_S`` seconds (errors stay until closed or ``ERROR_TOAST_S``), at
 ``MAX_TOASTS`` at once; the Log panel keeps them all.
 
 Status bar (bottom of the window): frames per second (mean over the last second), the last solve's
-time and iterations, and the selected goal's residual, e.g. ``right hand: 31 cm short``, in red
-when the goal is not met (beyond ``MET_M`` or ``MET_RAD``).
+time and iterations, the frame budget (:mod:`jackpy.ui.frame_budget`: quality rung, the solve's
+time box, solves over their box; its menu switches the adaptation and picks the target frame
+rate), and the selected goal's residual, e.g. ``right hand: 31 cm short``, in red when the goal is
+not met (beyond ``MET_M`` or ``MET_RAD``).
 """
 
 from __future__ import annotations
@@ -155,6 +157,23 @@ def residual_text(app: "App", key: str) -> tuple[str, bool] | None:
     return f"{name}: {', '.join(parts)}", False
 
 
+TARGET_RATES = (20.0, 30.0, 60.0)
+"""Target frame rates the frame budget's menu offers."""
+
+
+def _budget_menu(app: "App") -> None:
+    """The frame budget's line, a menu: adaptive quality on/off and the target frame rate."""
+    fb = app.frame_budget
+    if imgui.begin_menu(f"{fb.describe()}###frame_budget"):
+        changed, on = imgui.menu_item("Adaptive quality", "", fb.adaptive)
+        if changed:
+            fb.adaptive = on
+        for fps in TARGET_RATES:
+            if imgui.menu_item(f"Target {fps:.0f} frames/s", "", fb.fps == fps)[0]:
+                fb.fps = fps
+        imgui.end_menu()
+
+
 def draw_status_bar(app: "App", rate: FrameRate) -> None:
     """The status bar along the bottom of the main viewport (call before the dockspace)."""
     from jackpy.ui.scene_view import GoalPick
@@ -167,6 +186,8 @@ def draw_status_bar(app: "App", rate: FrameRate) -> None:
             s = app.stats
             imgui.text_colored(GREY, f"{rate.fps:5.1f} frames/s   solve {s.solve_s * 1e3:5.1f} ms, "
                                      f"{s.iterations} it   draw {s.draw_s * 1e3:4.1f} ms")
+            imgui.separator()
+            _budget_menu(app)
             key = None
             if isinstance(app.selection, GoalPick):
                 key = app.selection.key

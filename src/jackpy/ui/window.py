@@ -74,6 +74,7 @@ class Window:
         imgui.backends.glfw_init_for_opengl(self._addr, False)
         imgui.backends.opengl3_init("#version 330")
         self.app = app
+        app.frame_budget.adaptive = True  # interactive frames: the solve's box is strict (ui.frame_budget)
         fb = glfw.get_framebuffer_size(self.handle)
         app.renderer = Renderer(self.ctx, fb)
         app.resize(*fb)

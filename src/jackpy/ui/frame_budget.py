@@ -1,0 +1,158 @@
+"""The frame budget: adaptive quality that keeps the workbench at its target frame rate.
+
+Each :meth:`App.step <jackpy.ui.app.App.step>` asks :meth:`FrameBudget.plan` for the frame's
+:class:`FramePlan` and reports the frame back with :meth:`FrameBudget.record`. The budget keeps an
+estimate of what a frame costs besides the solve (the draw, the GPU's work, the panels, the swap:
+the frame period less the solve, measured from one step to the next) and gives the solve what is
+left of the target period (``1 / fps``) as its time box, between ``min_box_s`` and the document's
+own box (``settings.ik_time_budget_s``). The solve keeps its box (:class:`BehaviorLoop` stops its
+passes by the deadline), so the frame rate follows.
+
+When even the smallest box does not fit, or frames stay over the target, the budget steps down the
+quality :data:`LADDER` one rung at a time (fewer solver iterations per pass, fewer COM passes, a
+smaller 3-D view drawn while things move); after ``RECOVER_FRAMES`` frames well under the target
+it steps back up. A still frame is always drawn at full size and anti-aliased by the renderer.
+
+The window switches the budget on (:class:`~jackpy.ui.window.Window`); an App without a window
+(scripts, tests) runs the frame loop as without one unless ``app.frame_budget.adaptive`` is set.
+The status bar shows the rung, the box and the frames whose solve overran its box by more than
+``OVERRUN`` (the promise: none); its menu switches the adaptation off (the full rung, the
+document's box) or picks the target frame rate.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from jackpy.document.document import SolveLimits
+
+
+@dataclass(frozen=True)
+class Quality:
+    """One rung: caps on every behavior pass's solver iterations and on the COM loop's passes
+    (None: the loops' own), and the 3-D view's draw scale (fraction of each side) while moving."""
+
+    name: str
+    iterations: int | None
+    passes: int | None
+    render_scale: float
+
+
+LADDER: tuple[Quality, ...] = (
+    Quality("full", None, None, 1.0),
+    Quality("2 passes, 3/4 view", 10, 2, 0.75),
+    Quality("8 iterations, 1/2 view", 8, 2, 0.5),
+    Quality("1 pass, 5 iterations, 1/2 view", 5, 1, 0.5),
+)
+"""From the full quality down: each rung is cheaper in the solve and in the draw."""
+
+OVERRUN = 1.2
+"""A solve taking longer than this times its box breaks the promise (counted in ``overruns``)."""
+HEADROOM_S = 0.001
+"""Kept free of the target period besides the estimated cost (s)."""
+SETTLE_FRAMES = 4
+"""Frames after a change of rung before the next step down (the estimates must see it)."""
+RECOVER_FRAMES = 30
+"""Consecutive frames under ``RECOVER_FRACTION`` of the target before one step back up."""
+RECOVER_FRACTION = 0.6
+
+
+@dataclass(frozen=True)
+class FramePlan:
+    """What one frame may do: the solve's ``limits`` (None: the document's own box, counting
+    whole behavior frames, as without a frame budget) and the 3-D view's ``render_scale``."""
+
+    limits: SolveLimits | None
+    render_scale: float
+    level: int
+
+
+class FrameBudget:
+    """Adaptive quality for a target of ``fps`` frames per second (module docstring)."""
+
+    def __init__(self, fps: float = 30.0, min_box_s: float = 0.010, adaptive: bool = False) -> None:
+        if not fps > 0:
+            raise ValueError(f"target frame rate must be > 0, not {fps:g}")
+        self.fps = float(fps)
+        self.min_box_s = float(min_box_s)
+        self.adaptive = adaptive
+        self.level = 0
+        """Index into :data:`LADDER` (0: full quality)."""
+        self.other_s = 0.0
+        """Estimated cost of a frame besides its solve (s)."""
+        self.behaviors_s = 0.0
+        """Estimated cost of the behaviors' own work in a solve (s): the box is at least twice it,
+        so the IK keeps half the box."""
+        self.box_s = 0.0
+        """The box of the last plan (s)."""
+        self.overruns = 0
+        """Frames whose solve ran past ``OVERRUN`` times its box."""
+        self.solves = 0
+        """Frames that solved."""
+        self._since_change = SETTLE_FRAMES
+        self._calm = 0
+
+    @property
+    def target_s(self) -> float:
+        """The target frame period (s)."""
+        return 1.0 / self.fps
+
+    @property
+    def quality(self) -> Quality:
+        return LADDER[self.level if self.adaptive else 0]
+
+    def plan(self, document_box_s: float) -> FramePlan:
+        """The next frame's plan, given the document's own time box (s)."""
+        if not self.adaptive:
+            self.box_s = document_box_s
+            return FramePlan(None, 1.0, 0)
+        q = self.quality
+        fits = self.target_s - self.other_s - HEADROOM_S
+        self.box_s = min(document_box_s, max(self.min_box_s, 2.0 * self.behaviors_s, fits))
+        return FramePlan(SolveLimits(self.box_s, q.iterations, q.passes), q.render_scale, self.level)
+
+    def record(self, period_s: float, solve_s: float, box_s: float, solved: bool, drawn: bool = True,
+               behaviors_s: float = 0.0) -> None:
+        """The previous frame is over: ``period_s`` from its start to this one's (s), ``solve_s``
+        its solve (of which ``behaviors_s`` the behaviors' own work), ``box_s`` its box, ``solved``
+        whether it solved, ``drawn`` whether it drew the 3-D view. A frame that did neither
+        measures nothing (the window may have slept on input)."""
+        if solved:
+            self.solves += 1
+            w = 0.5 if behaviors_s > self.behaviors_s else 0.2
+            self.behaviors_s += w * (behaviors_s - self.behaviors_s)
+            if solve_s > OVERRUN * box_s:
+                self.overruns += 1
+        if not (solved or drawn):
+            self._calm += 1  # an idle frame: nothing was slow
+            self._recover()
+            return
+        other = max(0.0, period_s - solve_s)
+        self.other_s = other if other > self.other_s else 0.7 * self.other_s + 0.3 * other
+        self._since_change += 1
+        if not self.adaptive:
+            return
+        floor = max(self.min_box_s, 2.0 * self.behaviors_s)
+        squeezed = self.other_s + floor + HEADROOM_S > self.target_s
+        slow = solved and period_s > self.target_s and self.box_s <= floor
+        if (squeezed or slow) and self.level < len(LADDER) - 1 and self._since_change >= SETTLE_FRAMES:
+            self.level += 1
+            self._since_change, self._calm = 0, 0
+            return
+        self._calm = self._calm + 1 if period_s < RECOVER_FRACTION * self.target_s else 0
+        self._recover()
+
+    def _recover(self) -> None:
+        if self.adaptive and self.level > 0 and self._calm >= RECOVER_FRAMES:
+            self.level -= 1
+            self._calm, self._since_change = 0, 0
+
+    def describe(self) -> str:
+        """One line for the status bar: the rung, the box and the overruns."""
+        if not self.adaptive:
+            return f"quality fixed, box {self.box_s * 1e3:.0f} ms, {self.overruns} over"
+        return (f"quality {len(LADDER) - self.level}/{len(LADDER)} ({self.quality.name}), "
+                f"box {self.box_s * 1e3:.0f} ms, {self.overruns} over")
+
+
+__all__ = ["FrameBudget", "FramePlan", "LADDER", "Quality"]
