@@ -25,10 +25,12 @@ from fuzz_helpers import FUZZ, mutate, mutations
 from hypothesis import event, given, settings
 from hypothesis import strategies as st
 
+from jackpy.bench.cases_files import chain_fig_text
 from jackpy.cli import main
 from jackpy.commands.info import figure_summary
 from jackpy.errors import FigureError, JackpyError, ParseError
 from jackpy.peabody.compare import figure_differences
+from jackpy.peabody.fastread import parse_fast
 from jackpy.peabody.reader import parse_figures
 from jackpy.peabody.writer import figures_to_text
 
@@ -133,6 +135,52 @@ def generated_figure(draw) -> str:
 @given(generated_figure())
 def test_generated_figures_with_big_numbers_round_trip(text: str) -> None:
     _check(text)
+
+
+# ----- the reader's fast path reads exactly what the token parser reads ------------------------------
+def _written(text: str) -> str:
+    return figures_to_text(parse_figures(text, "seed.fig", fast=False))
+
+
+#: texts the fast path reads: shipped figures (their text and the writer's) and the bench's chain
+FAST_SEEDS = {name: text for name, text in {**SEEDS, **{f"written {n}": _written(t) for n, t in SEEDS.items()},
+                                            "chain": chain_fig_text(6)}.items()
+              if parse_fast(text, name) is not None}
+FAST_WORDS = WORDS + ["# c\n", "/* c */", "// c\n", "5cm", "2mm", "1in", "0.5rad", "10deg", "kg", "- 1", "+1", ".5",
+                      "1e3", "1.e2", "* rotx(1)", "* R(y)", "trans(1,2,3)", "rot(0,0,1,5)", "site q->location = "
+                      "trans(1,2,3);", "mass = 1;", "com = (1,2,3);", "segment z { }", "lower = (1);", "}"]
+
+
+def _fast_agrees(text: str) -> None:
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        fast = parse_fast(text, "fuzz.fig")
+    if fast is None:
+        event("declined: the token parser reads it")
+        return
+    event("read by the fast path")
+    slow = parse_figures(text, "fuzz.fig", fast=False)  # (it must accept what the fast path accepted)
+    assert [f.name for f in fast] == [f.name for f in slow]
+    for a, b in zip(fast, slow):
+        assert figure_differences(a, b, tol=0.0) == []  # (every number bit for bit)
+        assert list(a.segments) == list(b.segments) and list(a.joints) == list(b.joints)
+        for name, seg in a.segments.items():
+            assert list(seg.sites) == list(b.segments[name].sites)
+            if seg.psurf is not None:
+                assert seg.psurf.scale_text == b.segments[name].psurf.scale_text
+                assert seg.psurf.origin.text() == b.segments[name].psurf.origin.text()
+
+
+@settings(FUZZ, max_examples=300)
+@given(st.sampled_from(sorted(FAST_SEEDS)), st.data())
+def test_the_fast_path_reads_mutated_figures_as_the_token_parser_does(seed: str, data) -> None:
+    _fast_agrees(mutate(FAST_SEEDS[seed], data.draw(mutations(FAST_SEEDS[seed], FAST_WORDS))))
+
+
+@settings(FUZZ, max_examples=100)
+@given(generated_figure())
+def test_the_fast_path_reads_generated_figures_as_the_token_parser_does(text: str) -> None:
+    _fast_agrees(text)
 
 
 # ----- the findings of issue 22, item 5, as regression cases ------------------------------------------

@@ -43,20 +43,30 @@ class Mesh:
 
 class SourcePosition:
     """Where a name was written in a text file: ``file:line:column``, computed when asked (so a
-    reader pays nothing for positions no error needs). Copies share it (it is immutable)."""
+    reader pays nothing for positions no error needs). Copies share it (it is immutable).
+    ``index`` counts tokens; :meth:`at_offset` makes one from a character offset instead."""
 
-    __slots__ = ("file", "_text", "_index", "_where")
+    __slots__ = ("file", "_text", "_index", "_offset", "_where")
 
     def __init__(self, file: str, text: str, index: int) -> None:
         self.file, self._text, self._index = file, text, index
+        self._offset = -1
         self._where: str | None = None
+
+    @classmethod
+    def at_offset(cls, file: str, text: str, offset: int) -> SourcePosition:
+        """The position of character ``offset`` (0-based) of ``text``."""
+        pos = cls(file, text, -1)
+        pos._offset = offset
+        return pos
 
     def text(self) -> str:
         """``file:line:column`` of the name."""
         if self._where is None:
-            from jackpy.peabody.lexer import token_position
+            from jackpy.peabody.lexer import offset_position, token_position
 
-            line, col = token_position(self._text, self._index)
+            t = self._text
+            line, col = offset_position(t, self._offset) if self._offset >= 0 else token_position(t, self._index)
             self._where, self._text = f"{self.file}:{line}:{col}", ""
         return self._where
 

@@ -98,8 +98,12 @@ def token_position(text: str, index: int) -> tuple[int, int]:
                 start = m.start(1)
                 break
             n += 1
-    line = text.count("\n", 0, start) + 1
-    return line, start - (text.rfind("\n", 0, start) + 1) + 1
+    return offset_position(text, start)
+
+
+def offset_position(text: str, offset: int) -> tuple[int, int]:
+    """1-based (line, column) of character ``offset`` (0-based) of ``text``."""
+    return text.count("\n", 0, offset) + 1, offset - (text.rfind("\n", 0, offset) + 1) + 1
 
 
 class TokenStream:

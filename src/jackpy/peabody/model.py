@@ -23,7 +23,7 @@ import numpy as np
 
 from jackpy.errors import FigureError
 from jackpy.peabody.geometry import Psurf
-from jackpy.peabody.transforms import rotation, translation
+from jackpy.peabody.transforms import AXES, rotation, translation
 
 if TYPE_CHECKING:
     from jackpy.peabody.groups import JointGroup
@@ -56,6 +56,14 @@ class Dof:
         x, y, z = x / big, y / big, z / big  # (scaled first: the norm of a huge axis would overflow)
         n = math.sqrt(x * x + y * y + z * z)
         self.axis = np.array([x / n, y / n, z / n])
+
+    @classmethod
+    def about(cls, kind: str, axis: str, lower: float = -np.pi, upper: float = np.pi) -> Dof:
+        """The DOF of ``kind`` about or along the named axis ``'x'``, ``'y'`` or ``'z'``: what
+        ``Dof(kind, AXES[axis], lower, upper)`` gives, without the checks (a reader's fast path)."""
+        dof = cls.__new__(cls)
+        dof.kind, dof.axis, dof.lower, dof.upper = kind, AXES[axis].copy(), lower, upper
+        return dof
 
     def transform(self, value: float) -> np.ndarray:
         """The 4x4 transform of this DOF at ``value``."""

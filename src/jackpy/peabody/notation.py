@@ -26,6 +26,7 @@ import math
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from jackpy.peabody.lexer import MAX_MAGNITUDE
 from jackpy.peabody.transforms import rotation, scaling, translation
 
 Prim = tuple[str, tuple[float, ...]]
@@ -40,6 +41,11 @@ DEG = math.pi / 180  # radians per degree
 PRIM_ARGS = {"trans": "LLL", "scale": "NNN", "rotx": "A", "roty": "A", "rotz": "A",
              "rot": "NNNA", "matrix": "N" * 16}
 RIGID_PRIMS = ("trans", "rotx", "roty", "rotz", "rot", "matrix")
+#: largest entry (5e11) of a composed transform's 3x3 part, and of its translation in cm: the writer's
+#: ``scale``, ``rot``, ``trans`` or ``matrix`` form of it then stays within MAX_MAGNITUDE
+MAX_LINEAR = MAX_MAGNITUDE / 2
+_BOUNDS = np.full((4, 4), MAX_LINEAR)
+_BOUNDS[:3, 3] *= CM
 
 
 def prim_matrix(prim: Prim) -> np.ndarray:
@@ -95,20 +101,65 @@ def _rotation_rows(prim: Prim) -> tuple[tuple[float, float, float], ...]:
 _ROTATIONS = frozenset(["rotx", "roty", "rotz", "rot"])
 
 
+def _is_simple(prims: list[Prim]) -> bool:
+    """The writer's (and most files') form ``rot... * trans(...)``, or a lone ``trans(...)``."""
+    n = len(prims)
+    return 0 < n <= 2 and prims[-1][0] == "trans" and (n == 1 or prims[0][0] in _ROTATIONS)
+
+
+def _simple_entries(prims: list[Prim]) -> list[float]:
+    """The 16 entries, row by row, of the product of :func:`_is_simple` primitives."""
+    r0, r1, r2 = _rotation_rows(prims[0]) if len(prims) == 2 else _IDENTITY_ROWS
+    t = prims[-1][1]
+    return [*r0, t[0] * CM, *r1, t[1] * CM, *r2, t[2] * CM, 0.0, 0.0, 0.0, 1.0]
+
+
+_IDENTITY_ROWS = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
+
+
 def compose(prims: list[Prim]) -> np.ndarray:
     """Column matrix of the file product ``p1 * p2 * ... * pn``, i.e. ``pn @ ... @ p2 @ p1``."""
     if not prims:
         return np.eye(4)
-    n = len(prims)
-    if n <= 2 and prims[-1][0] == "trans" and (n == 1 or prims[0][0] in _ROTATIONS):
-        # the writer's (and most files') form ``rot... * trans(...)``: one array, no products
-        (r0, r1, r2) = _rotation_rows(prims[0]) if n == 2 else ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
-        t = prims[-1][1]
-        return np.array([[*r0, t[0] * CM], [*r1, t[1] * CM], [*r2, t[2] * CM], [0.0, 0.0, 0.0, 1.0]])
+    if _is_simple(prims):  # (one array, no products)
+        return np.array(_simple_entries(prims)).reshape(4, 4)
     out = _fast_matrix(prims[0])
     for p in prims[1:]:
         out = _fast_matrix(p) @ out
     return out
+
+
+def bounded_compose(prims: list[Prim]) -> np.ndarray | None:
+    """:func:`compose` of ``prims``, or None when an entry of the product is beyond
+    :data:`MAX_LINEAR` (its translation: MAX_LINEAR cm)."""
+    m = compose(prims)
+    if _is_simple(prims):
+        ok = max(abs(v) for v in prims[-1][1]) <= MAX_LINEAR  # (rotation entries are at most 1)
+    else:
+        ok = bool((np.abs(m) <= _BOUNDS).all())
+    return m if ok else None
+
+
+def bounded_entries(prims: list[Prim]) -> list[float] | None:
+    """The 16 entries, row by row, of :func:`bounded_compose` (None likewise), for building many
+    matrices in one array."""
+    if _is_simple(prims):
+        t = prims[-1][1]
+        return _simple_entries(prims) if max(abs(t[0]), abs(t[1]), abs(t[2])) <= MAX_LINEAR else None
+    m = bounded_compose(prims)
+    return None if m is None else m.reshape(-1).tolist()
+
+
+def is_rigid_prim(prim: Prim) -> bool:
+    """True for a rotation or translation primitive, or a ``matrix`` that is one (to 1e-6)."""
+    if prim[0] not in RIGID_PRIMS:
+        return False
+    if prim[0] != "matrix":
+        return True
+    m = compose([prim])
+    r = m[:3, :3]
+    return bool(np.all(np.abs(m[3] - (0, 0, 0, 1)) <= 1e-6) and np.all(np.abs(r.T @ r - np.eye(3)) <= 1e-6)
+                and np.linalg.det(r) > 0)
 
 
 def _rotation_prims(r: np.ndarray) -> list[Prim]:

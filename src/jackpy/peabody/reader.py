@@ -26,6 +26,7 @@ from pathlib import Path
 import numpy as np
 
 from jackpy.errors import FigureError, ImportCADError, ParseError
+from jackpy.peabody.fastread import parse_fast
 from jackpy.peabody.geometry import Mesh, Psurf, SourcePosition
 from jackpy.peabody.groups import DRIVER_KINDS, DriverParam, JointGroup, LinearDriver, known_driver, make_driver
 from jackpy.peabody.kinematics import MAX_JOINT_DOFS
@@ -40,7 +41,16 @@ from jackpy.peabody.model import (
     Joint,
     Segment,
 )
-from jackpy.peabody.notation import ANGLE_UNITS, CM, DEG, LENGTH_UNITS, PRIM_ARGS, RIGID_PRIMS, Prim, compose
+from jackpy.peabody.notation import (
+    ANGLE_UNITS,
+    CM,
+    DEG,
+    LENGTH_UNITS,
+    PRIM_ARGS,
+    Prim,
+    bounded_compose,
+    is_rigid_prim,
+)
 from jackpy.peabody.paths import MAX_MESH_BYTES, MAX_TEXT_BYTES, PathPolicy, read_limited
 from jackpy.peabody.psurf_io import load_mesh
 from jackpy.peabody.transforms import AXES
@@ -50,20 +60,14 @@ _Value = tuple[float, int, int]
 _UNITS = frozenset([*LENGTH_UNITS, *ANGLE_UNITS])
 _ALL_UNITS = ", ".join([*LENGTH_UNITS, *ANGLE_UNITS])
 _PRIMS = "a transform (trans, scale, rotx, roty, rotz, rot, matrix)"
-#: largest entry (5e11) of a composed transform's 3x3 part, and of its translation in cm: the writer's
-#: ``scale``, ``rot``, ``trans`` or ``matrix`` form of it then stays within MAX_MAGNITUDE
-_MAX_LINEAR = MAX_MAGNITUDE / 2
 #: the fast path of :meth:`_Parser.prim` takes values up to this; others go the checked way
 _FAST_MAX = MAX_MAGNITUDE
 _DIGITS = frozenset("0123456789")
 _IDSTART = frozenset("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz_")
-_ROTATIONS = frozenset(["rotx", "roty", "rotz", "rot"])
 _JOINT_KEYS = {"connect": "connect", "type": "type", "displacement": "displacement", "lower": "lower",
                "upper": "upper", "lower_limits": "lower", "upper_limits": "upper"}
 #: ``R(x)``-style DOFs: (kind, axis name) -> the unit axis (a fresh copy is made per DOF)
 _NAMED_DOFS = {(kind, name): axis for kind in ("R", "T") for name, axis in AXES.items()}
-_BOUNDS = np.full((4, 4), _MAX_LINEAR)
-_BOUNDS[:3, 3] *= CM
 
 
 @dataclass
@@ -271,27 +275,23 @@ class _Parser:
             raise self.fig_error(k, "rot(...) axis has no direction")
         return (name, tuple(args)), k
 
-    def xform(self, rigid: bool) -> list[Prim]:
-        """``prim {"*" prim}``; with ``rigid`` only rotations and translations are allowed. The
-        product must stay within range (its writer form too)."""
+    def xform(self, rigid: bool) -> tuple[list[Prim], np.ndarray]:
+        """``prim {"*" prim}`` and its matrix; with ``rigid`` only rotations and translations are
+        allowed. The product must stay within range (its writer form too)."""
         prims = []
         first = self.ts.pos
         while True:
             prim, k = self.prim()
-            if rigid and (prim[0] not in RIGID_PRIMS or (prim[0] == "matrix" and not _rigid(prim))):
+            if rigid and not is_rigid_prim(prim):
                 raise self.fig_error(k, f"a location must be rigid (trans, rot...), not {prim[0]}(...)")
             prims.append(prim)
             if not self.ts.accept("*"):
                 break
-        n = len(prims)
-        if n <= 2 and prims[-1][0] == "trans" and (n == 1 or prims[0][0] in _ROTATIONS):
-            ok = max(abs(v) for v in prims[-1][1]) <= _MAX_LINEAR  # (rotation entries are at most 1)
-        else:
-            ok = bool((np.abs(compose(prims)) <= _BOUNDS).all())
-        if not ok:
+        m = bounded_compose(prims)
+        if m is None:
             raise ParseError("transform out of range (entries at most 5e11, translations at most 5e11 cm)",
                              self.file, *self.ts.position(first))
-        return prims
+        return prims, m
 
     def siteref(self) -> tuple[str, str]:
         toks, k = self.ts.tokens, self.ts.pos
@@ -358,7 +358,7 @@ class _Parser:
                     pos.root = ts.pos
                     fig.root = self.siteref()
                 else:
-                    fig.location = compose(self.xform(rigid=True))
+                    fig.location = self.xform(rigid=True)[1]
                 self.end()
             else:
                 raise ts.error("expected 'segment', 'joint', 'group', 'root', 'location', 'human' or '}'")
@@ -397,7 +397,7 @@ class _Parser:
                     ts.expect("=")
                 if site in seg.sites:
                     raise self.fig_error(sat, f"{where}: duplicate site {site!r}")
-                seg.add_site(site, compose(self.xform(rigid=True)))
+                seg.add_site(site, self.xform(rigid=True)[1])
                 self.end()
                 continue
             if word not in ("psurf", "attribute", "mass", "com", "inertia"):
@@ -409,8 +409,8 @@ class _Parser:
             ts.expect("=")
             if word == "psurf":
                 sk = ts.expect_kind(STRING, "a quoted geometry file name")
-                prims = self.xform(rigid=False) if ts.accept("*") else []
-                seg.psurf = Psurf(string_value(ts.tokens[sk]), compose(prims), scale_text=prims,
+                prims, m = self.xform(rigid=False) if ts.accept("*") else ([], np.eye(4))
+                seg.psurf = Psurf(string_value(ts.tokens[sk]), m, scale_text=prims,
                                   origin=SourcePosition(self.file, ts.text, sk))
             elif word == "attribute":
                 kind = ts.kind()
@@ -839,7 +839,7 @@ class _Parser:
             elif ts.accept("place"):
                 name = self.ident("a figure name")
                 ts.expect("at", "'at'")
-                places.append((name, compose(self.xform(rigid=True))))
+                places.append((name, self.xform(rigid=True)[1]))
                 self.end()
                 continue
             elif ts.at("figure"):
@@ -891,13 +891,6 @@ def _exists(path: Path) -> bool:
         return False
 
 
-def _rigid(prim: Prim) -> bool:
-    m = compose([prim])
-    r = m[:3, :3]
-    return bool(np.all(np.abs(m[3] - (0, 0, 0, 1)) <= 1e-6) and np.all(np.abs(r.T @ r - np.eye(3)) <= 1e-6)
-                and np.linalg.det(r) > 0)
-
-
 def read_text(path: str | os.PathLike[str], limit: int | None = None) -> str:
     """The UTF-8 text of a regular file of at most ``limit`` bytes (default
     :data:`~jackpy.peabody.paths.MAX_TEXT_BYTES`); OSError for anything else (a folder, a FIFO or
@@ -923,10 +916,16 @@ def _validate(parser: _Parser, figures: Iterable[Figure]) -> None:
             raise parser.fig_error(pos.figure if pos else 0, str(exc)) from None
 
 
-def parse_figures(text: str, filename: str = "<string>") -> list[Figure]:
-    """Parse ``.fig`` text into validated figures (no geometry is loaded)."""
-    parser = _Parser(text, filename)
+def parse_figures(text: str, filename: str = "<string>", *, fast: bool = True) -> list[Figure]:
+    """Parse ``.fig`` text into validated figures (no geometry is loaded).
+
+    Well-formed text takes :func:`~jackpy.peabody.fastread.parse_fast`; anything it declines (and
+    everything with ``fast=False``) the token parser, which reports every error."""
     with np.errstate(all="ignore"):  # (overflow is checked where it matters, without warnings)
+        figures = parse_fast(text, filename) if fast else None
+        if figures is not None:
+            return figures
+        parser = _Parser(text, filename)
         figures = parser.figure_file()
     _validate(parser, figures)
     return figures
