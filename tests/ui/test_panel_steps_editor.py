@@ -79,6 +79,25 @@ def test_plan_is_saved_with_the_document(tmp_path):
     assert footsteps_of(again, fig.name) == footsteps_of(doc, fig.name)
 
 
+def test_plan_walks_round_the_scenes_props():
+    """The default scene's worktable and chair are figures, not CAD objects: planned round too."""
+    from shapely.geometry import Polygon
+
+    from jackpy.ui.panels.steps_editor import floor_of, footprint, gait_of
+
+    env, base = session.default_scene()
+    doc = Document(env)
+    fig = doc.figure_of_interest()
+    st = defaults()
+    floor = floor_of(doc, st, fig)
+    assert len(floor.footprints) == 2  # worktable, chair
+    c = fig.site_world("pelvis", "centre")[:3, 3]
+    plan_to(doc, st, fig, (c[0] + 2.4, c[2] + 0.1))  # beyond the worktable (x 0.6..1.8 m)
+    steps = footsteps_of(doc, fig.name)
+    assert not any(Polygon(footprint(s, gait_of(st, fig))).intersects(f) for s in steps for f in floor.footprints)
+    assert max(abs(s.z - c[2]) for s in steps) > 0.5  # went round it (z -0.3..0.5 m), not through
+
+
 def test_bake_writes_the_edited_walk_and_leaves_the_figure(tmp_path):
     from jackpy.motion import motion_file
 
