@@ -48,9 +48,15 @@ def register(subparsers) -> None:
     g.add_argument("--to", type=_point, metavar="X,Z", help="walk to this floor point (m)")
     g.add_argument("--to-object", dest="to_object", default=None, metavar="NAME[.SITE]",
                    help="walk to stand in front of this scene object (or beside its site), facing it")
+    g.add_argument("--shuffle", type=_point, default=None, metavar="RIGHT,FORWARD",
+                   help="short steps keeping the heading: this far to the figure's right and forward "
+                        "(m; negative: left, backwards; at most 1.5 m)")
     g.add_argument("--path", type=_path, metavar='"x,z x,z ..."', help="walk through these floor points (m)")
     p.add_argument("--facing", type=float, default=None, metavar="DEG",
                    help="heading at the end (degrees about +y, 0 faces +z; default: along the path)")
+    p.add_argument("--steer", action="store_true",
+                   help="with --to: steer toward the point step by step (45° at most per step, the "
+                        "incremental walker) instead of planning round the objects")
     p.add_argument("--from", dest="start", type=_point, default=None, metavar="X,Z",
                    help="start here (m; default: the scene's stand)")
     p.add_argument("--figure", default="male:50", metavar="NAME", help="standard human (male:50, female:5, ...)")
@@ -65,6 +71,7 @@ def run(args) -> int:
     from jackpy.commands.motion import Progress
     from jackpy.locomotion import footsteps, walk_path, walk_solve
     from jackpy.locomotion.walk_gait import GaitParams
+    from jackpy.locomotion.walk_to import WalkError
     from jackpy.motion import cast, motion_file
 
     stand = (0.0, 0.0, 0.0)
@@ -80,7 +87,18 @@ def run(args) -> int:
                                       "heading_deg": float(np.degrees(stand[2]))})
     p = GaitParams.for_figure(fig)
     facing = None if args.facing is None else float(np.radians(args.facing))
-    if args.to is not None or args.to_object is not None:
+    if args.steer and args.to is None:
+        raise WalkError("--steer goes with --to X,Z")
+    if args.shuffle is not None:
+        try:
+            steps = footsteps.shuffle(p, stand[0], stand[1], stand[2], args.shuffle[0], args.shuffle[1])
+        except ValueError as exc:
+            raise WalkError(str(exc)) from None
+    elif args.steer:
+        from jackpy.locomotion.stepper import Approach, Stepper
+
+        steps = Stepper(p, footsteps.standing(p, *stand), Approach(args.to, facing=facing)).run()
+    elif args.to is not None or args.to_object is not None:
         from jackpy.locomotion.walk_target import plan
 
         steps, _, _ = plan(fig, p, args.to if args.to is not None else args.to_object, objects, facing=facing,

@@ -150,3 +150,43 @@ def straight(p: GaitParams, distance: float, x: float = 0.0, z: float = 0.0, psi
     d = _dir(psi)
     start = np.array([x, z])
     return from_path(p, [start, start + distance * d])
+
+
+#: the most a foot moves per step when stepping sideways or backwards (fraction of the gait's step
+#: length), and the longest such move (m; farther: walk there)
+SHUFFLE_STEP = 0.4
+SHUFFLE_LIMIT = 1.5
+
+
+def shuffle(p: GaitParams, x: float, z: float, psi: float, right: float = 0.0, forward: float = 0.0) -> list[Footstep]:
+    """Short steps keeping the heading ``psi``: from standing at ``(x, z)`` to standing ``right``
+    (m, + to the figure's right) and ``forward`` (m, − backwards) from there, feet together at
+    both ends. Sideways: the foot on that side leads and the other closes up to the standing width
+    each step; backwards (or diagonally): the feet alternate, each passing the other. Each step
+    moves a foot at most ``SHUFFLE_STEP`` of a step length; ``SHUFFLE_LIMIT`` at most."""
+    d_local = np.array([float(right), float(forward)])
+    dist = float(np.linalg.norm(d_local))
+    if dist > SHUFFLE_LIMIT:
+        raise ValueError(f"steps sideways or backwards go at most {SHUFFLE_LIMIT} m, not {dist:.2f} m: walk there")
+    c0 = np.array([float(x), float(z)])
+    d = -d_local[0] * _lat(psi) + d_local[1] * _dir(psi)  # world (x, z)
+    w = p.foot.width
+    if dist < 1e-6:
+        return standing(p, x, z, psi)
+    sideways = abs(d_local[0]) > 2.0 * abs(d_local[1])
+    lead = ("right" if d_local[0] > 0 else "left") if sideways else "right"
+    # each move of the centre line by d/n moves a sideways foot by d/n, an alternating one by 2d/n
+    n = max(1, int(np.ceil((1.0 if sideways else 2.0) * dist / (SHUFFLE_STEP * p.step_length))))
+    steps = standing(p, x, z, psi, lead)
+    if sideways:  # lead out, close up: two footsteps per move
+        for k in range(1, n + 1):
+            c = c0 + d * (k / n)
+            steps.append(_foot_at(c, psi, lead, w))
+            steps.append(_foot_at(c, psi, "left" if lead == "right" else "right", w))
+        return steps
+    side = lead
+    for k in range(1, n + 1):  # alternate: each foot to the next centre-line point
+        steps.append(_foot_at(c0 + d * (k / n), psi, side, w))
+        side = "left" if side == "right" else "right"
+    steps.append(_foot_at(c0 + d, psi, side, w))  # the other foot closes up
+    return steps

@@ -30,6 +30,12 @@ from jackpy.locomotion.walk_gait import (DOUBLE_SUPPORT, FOOT_FLAT, HEEL_OFF, MA
                                          foot_transform, pelvis_drop, rot_y, smooth, swing_lift, swing_pitch)
 
 
+#: a step whose centre site travels more than this from the feet's heading (rad), over more than
+#: SHUFFLE_MIN (m), is a sideways or backwards step
+SHUFFLE_ANGLE = np.radians(60.0)
+SHUFFLE_MIN = 0.05
+
+
 @dataclass
 class Footstep:
     """One foot placement: ankle floor point (m), heading (rad), ``"left"``/``"right"``."""
@@ -97,7 +103,23 @@ class Walk:
         for j in range(2, len(steps)):
             self.keys.append(0.5 * (steps[j - 1].point + steps[j].point))
             self.key_dir.append(_angle_lerp(steps[j - 1].psi, steps[j].psi, 0.5))
+        self.shuffle = self._shuffle_steps()
         self.bank_keys = self._bank_at_keys()
+
+    def _shuffle_steps(self) -> list[bool]:
+        """Per step j: whether the centre site travels sideways or backwards (more than
+        ``SHUFFLE_ANGLE`` from the feet's heading, over more than ``SHUFFLE_MIN``): such a step
+        moves the centre site straight between its keys while the pelvis keeps facing the feet
+        (:func:`.footsteps.shuffle`), instead of turning the pelvis along the travel."""
+        out = [False] * len(self.steps)
+        for j in range(2, len(self.steps)):
+            chord = self.keys[j - 1] - self.keys[j - 2]
+            if float(np.linalg.norm(chord)) <= SHUFFLE_MIN:
+                continue
+            heading = _angle_lerp(self.key_dir[j - 2], self.key_dir[j - 1], 0.5)
+            travel = float(np.arctan2(chord[0], chord[1]))
+            out[j] = abs((travel - heading + np.pi) % (2.0 * np.pi) - np.pi) > SHUFFLE_ANGLE
+        return out
 
     # -- feet ------------------------------------------------------------------------------
     def _flat(self, j: int, pitch: float) -> np.ndarray:
@@ -186,6 +208,8 @@ class Walk:
         u = (t - t0) / (land[j] - t0)
         c0, c1 = self.keys[j - 2], self.keys[j - 1]
         a0, a1 = self.key_dir[j - 2], self.key_dir[j - 1]
+        if self.shuffle[j]:  # sideways or backwards: straight, facing the feet
+            return c0 + u * (c1 - c0), _angle_lerp(a0, a1, u), 0.5 * u
         pt, yaw = _hermite_at_arc(c0, c1, a0, a1, u)
         return pt, yaw, 0.5 * u
 
@@ -199,6 +223,8 @@ class Walk:
             from jackpy.locomotion.walk_gait import GRAVITY
 
             for j in range(2, n):
+                if self.shuffle[j]:
+                    continue  # no turn is walked sideways or backwards
                 c0, c1, a0, a1 = self.keys[j - 2], self.keys[j - 1], self.key_dir[j - 2], self.key_dir[j - 1]
                 length = _arc_length(c0, c1, a0, a1)
                 if length < 1e-6:
