@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from jackpy.errors import FigureError
+from jackpy.ik.chain_rule import to_z as _to_z_compiled
 from jackpy.ik.goals.base import Columns, Context, Goal, GoalEval
 from jackpy.ik.goals.combine import AnyOf
 from jackpy.peabody.groups import VariableMap
@@ -140,6 +141,9 @@ class Evaluation:
 class Compiled:
     """Index maps of a :class:`Problem`: variables, bounds, linear rows and goal evaluation."""
 
+    #: the chain rule to ``z`` by the compiled loop (:mod:`.chain_rule`; ``False``: numpy reference)
+    compiled_chain: bool = _to_z_compiled is not None
+
     def __init__(self, problem: Problem, kin: Kinematics) -> None:
         fig = problem.figure
         self.problem, self.kin, self.figure = problem, kin, fig
@@ -199,10 +203,22 @@ class Compiled:
         self._blocks = []
         row = col = self.n_free_vars
         for g, idx, sl, used in self.groups:
-            self._blocks.append((g.driver, sl, used, row, row + idx.size, col, col + used.size))
+            scale_c = self.scale[col:col + used.size]
+            # (driver, x slice, used angles or None for all, scale or None for ones, row/column span)
+            self._blocks.append((g.driver, sl, None if used.size == sl.stop - sl.start else used,
+                                 None if np.all(scale_c == 1.0) else scale_c, row, row + idx.size, col,
+                                 col + used.size))
             row += idx.size
             col += used.size
-        self._free_scale = self.scale[:self.n_free_vars]
+        self._free_scale = np.ascontiguousarray(self.scale[:self.n_free_vars])
+        # the compiled chain rule (ik/chain_rule.py): block spans and where each driver's Jacobian
+        # sits in one stacked array (member rows x at most 3 used angles)
+        spans, at = [], 0
+        for b in self._blocks:
+            spans.append((b[4], b[5], b[6], b[7], at))
+            at += b[5] - b[4]
+        self._spans = np.array(spans, dtype=np.int64).reshape(-1, 5)
+        self._stack_shape = (at, max([b[7] - b[6] for b in self._blocks], default=0))
         #: (key, Context, chain-rule blocks) of the last evaluation: the posture's geometry does not
         #: depend on the targets, so the next solve's first evaluation (a warm start at the same
         #: posture, new targets) reuses it and evaluates only the goals
@@ -273,8 +289,7 @@ class Compiled:
         else:
             fk = self.kin.forward(q, location)
             ctx = Context(self.kin, fk, self.cols, self.columns)
-            chain = [(lo_r, hi_r, lo_c, hi_c, np.asarray(drv.jacobian(x[sl]), dtype=float)[:, used]
-                      * self.scale[lo_c:hi_c]) for drv, sl, used, lo_r, hi_r, lo_c, hi_c in self._blocks]
+            chain = self._chain(x)
             self._geometry = (key, ctx, chain)
         evals = [g.evaluate(ctx) for g, _ in self.entries]
         levels = {}
@@ -283,20 +298,42 @@ class Compiled:
             if len(slots) == 1:
                 e = evals[slots[0]]
                 F, Jc = w[0] * e.f, w[0] * e.J
-            else:
-                F = np.concatenate([wk * evals[k].f for wk, k in zip(w, slots)])
-                Jc = np.concatenate([wk * evals[k].J for wk, k in zip(w, slots)])
+            else:  # weights of 1 (the usual) need no product before the copy
+                F = np.concatenate([evals[k].f if wk == 1.0 else wk * evals[k].f for wk, k in zip(w, slots)])
+                Jc = np.concatenate([evals[k].J if wk == 1.0 else wk * evals[k].J for wk, k in zip(w, slots)])
             levels[lv] = (F, self._to_z(Jc, chain))
         return Evaluation(z, q, evals, levels, tuple(a.selected for a in self.anyofs), x, z)
 
-    def _to_z(self, Jc: np.ndarray, chain: list) -> np.ndarray:
+    def _chain(self, x: np.ndarray) -> tuple[list, np.ndarray | None]:
+        """The groups' chain-rule blocks at ``x``: ``[(lo_r, hi_r, lo_c, hi_c, dq/dz block)]`` and,
+        for the compiled chain rule, the blocks stacked (``None`` without numba or groups)."""
+        blocks = []
+        for drv, sl, used, scale, lo_r, hi_r, lo_c, hi_c in self._blocks:
+            jac = np.asarray(drv.jacobian(x[sl]), dtype=float)
+            if used is not None:
+                jac = jac[:, used]
+            if scale is not None:
+                jac = jac * scale
+            blocks.append((lo_r, hi_r, lo_c, hi_c, jac))
+        if not blocks or not self.compiled_chain:
+            return blocks, None
+        stack = np.empty(self._stack_shape)
+        for (lo_r, hi_r, lo_c, hi_c, jac), at in zip(blocks, self._spans[:, 4]):
+            stack[at:at + hi_r - lo_r, :hi_c - lo_c] = jac
+        return blocks, stack
+
+    def _to_z(self, Jc: np.ndarray, chain: tuple[list, np.ndarray | None]) -> np.ndarray:
         """Rows over the DOF columns ``cols`` -> rows over the scaled variables ``z``."""
-        if not chain:
+        blocks, stack = chain
+        if not blocks:
             return Jc * self.scale
         out = np.empty((Jc.shape[0], self.nv))
         nf = self.n_free_vars
+        if stack is not None:  # one compiled loop (ik/chain_rule.py)
+            _to_z_compiled(np.ascontiguousarray(Jc), nf, self._free_scale, self._spans, stack, out)
+            return out
         np.multiply(Jc[:, :nf], self._free_scale, out=out[:, :nf])
-        for lo_r, hi_r, lo_c, hi_c, jac in chain:
+        for lo_r, hi_r, lo_c, hi_c, jac in blocks:
             np.matmul(Jc[:, lo_r:hi_r], jac, out=out[:, lo_c:hi_c])
         return out
 
