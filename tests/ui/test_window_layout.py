@@ -159,3 +159,30 @@ def test_panels_an_old_saved_layout_does_not_know_dock_in_their_area(request, tm
     finally:
         win.close()
     assert "[Window][Step editor]" in ini.read_text()  # known from now on
+
+
+def test_a_whole_area_an_old_layout_lacks_is_split_off_the_view(request, tmp_path):
+    """No panel of the bottom area in the saved layout: they dock together in a new node below
+    the 3-D view (none floats over it)."""
+    if in_child_process(request):
+        return
+    env, _ = session.default_scene()
+    ini = tmp_path / "layout.ini"
+    win = Window(App(env), "jackpy layout", (1280, 800), visible=False, layout_file=ini)
+    win.frame()
+    win.close()
+    bottom = ("Timeline", "Log", "Ergonomics")
+    ini.write_text(_without_windows(ini.read_text(), bottom))
+    win = Window(App(env), "jackpy layout", (1280, 800), visible=False, layout_file=ini)
+    try:
+        for title in ("Log", "Ergonomics"):
+            win.ui.open_panels[title] = True
+        for _ in range(3):
+            win.frame()
+        r = win.view_rect
+        nodes = {imgui.internal.find_window_by_name(t).dock_id for t in ("Log", "Ergonomics")}
+        assert len(nodes) == 1 and 0 not in nodes  # one new node, shared
+        log = window_rect("Log") or window_rect("Ergonomics")
+        assert log[1] >= r.y + r.h - 1 and not overlaps(log, r)
+    finally:
+        win.close()

@@ -82,10 +82,11 @@ class Layout:
         if self.reset_requested:
             build_default(dock_id, titles)
             self.reset_requested = False
-        elif not self._placed:
-            dock_unknown(dock_id, [t for t in titles if t not in self.saved], self.saved)
-        self._placed = True
+            self._placed = True
         imgui.dock_space_over_viewport(dock_id, vp, imgui.DockNodeFlags_.passthru_central_node)
+        if not self._placed:  # (after the dockspace: its central node is known then)
+            dock_unknown(dock_id, [t for t in titles if t not in self.saved], self.saved)
+            self._placed = True
         node = imgui.internal.dock_builder_get_central_node(dock_id)
         if node is not None:
             self.central = Rect(node.pos.x, node.pos.y, node.size.x, node.size.y)
@@ -149,7 +150,7 @@ def dock_unknown(dock_id: int, titles: list[str], saved: dict[str, int | None]) 
             if central is None:
                 continue  # no dockspace yet (nothing was saved): the default layout docks it
             direction, fraction = _SIDE[area]
-            node, _rest = _split(central.id, direction, fraction)
+            node, _rest = _split(central.id_, direction, fraction)
             made[area] = node
         internal.dock_builder_dock_window(title, node)
     if titles:
