@@ -32,7 +32,7 @@ from jackpy.locomotion.walk_path import Footstep
 from jackpy.ui.panels import Panel
 from jackpy.ui.panels.steps_editor import (PATH_COLOUR, Floor, View, centre_path_of, draw_floor,
                                            draw_footprints, floor_of, footprint, footsteps_of, gait_of, path_of, store,
-                                           walk_of)
+                                           walk_of, walker)
 
 if TYPE_CHECKING:
     from jackpy.document import Document
@@ -346,7 +346,7 @@ def draw(app: "App", ui: "UiState") -> None:
     imgui.set_next_window_size((620, 640), imgui.Cond_.first_use_ever)
     visible, ui.open_panels[TITLE] = imgui.begin(TITLE, ui.open_panels[TITLE])
     fig = app.figure_of_interest()
-    if visible and fig is not None and fig.joints:
+    if visible and walker(fig):
         try:
             path, steps = path_of(app.doc, fig.name), footsteps_of(app.doc, fig.name)
         except ValueError as exc:  # a plan in a file that is no walk: said, left alone

@@ -81,6 +81,11 @@ def store(doc: "Document", name: str, steps: list[Footstep], path: Any = KEEP) -
     doc.extras[PLANS] = plans
 
 
+def walker(fig: "Figure | None") -> bool:
+    """Whether ``fig`` walks here: a human figure (joints, a pelvis and a head), not a prop or a creature."""
+    return fig is not None and bool(fig.joints) and {"pelvis", "head"} <= set(fig.segments)
+
+
 def gait_of(st: dict[str, Any], fig: "Figure"):
     """The figure's gait (measured once per figure and panel)."""
     from jackpy.locomotion.walk_gait import GaitParams
@@ -366,7 +371,7 @@ def draw(app: "App", ui: "UiState") -> None:
     imgui.set_next_window_size((560, 620), imgui.Cond_.first_use_ever)
     visible, ui.open_panels[TITLE] = imgui.begin(TITLE, ui.open_panels[TITLE])
     fig = app.figure_of_interest()
-    if visible and fig is not None and fig.joints:
+    if visible and walker(fig):
         imgui.set_next_item_width(160)
         _, st["goal"] = imgui.input_float2("goal x, z (m)", st["goal"])
         imgui.same_line()
