@@ -124,3 +124,22 @@ def test_foot_reactions_hold_the_whole_body(poser):
     upper = sum(kin.mass[i] * G * (coms[i][2] - hip[2]) for i, n in enumerate(kin.segment_names) if n not in legs)
     hips = tau[f.joint_dof_slice("left_hip")][2] + tau[f.joint_dof_slice("right_hip")][2]
     assert upper > 10.0 and hips == pytest.approx(-upper, rel=1e-9)
+
+
+def test_percent_capable_uses_the_posture_curves(poser):
+    """The elbow's flexor strength is read at the elbow's angle (the strength module's posture curve,
+    Kamon 1981's shape): the p50 strength each row reports equals torque(..., angle) of the measured
+    displacement, and bending the elbow from 45 to 90 degrees changes it."""
+    seen = {}
+    for deg in (45.0, 90.0):
+        poser.neutral()
+        poser.arm("right", 60.0)
+        poser.elbow("right", deg)
+        r = assess(poser.f, ["capable"], Task(load_kg=6.0, sex="female"))["capable"]
+        row = next(x for x in r.worksheet["joints"] if x["joint"] == "right_elbow")
+        angle = float(np.asarray(poser.f.joint("right_elbow").displacement).reshape(-1)[0])
+        col = 1 if row["moment_Nm"] >= 0 else 0
+        expected = torque("elbow", row["dof"], "female", 50.0, angle)[col]
+        assert row["female_p50_strength_Nm"] == pytest.approx(expected, rel=1e-9)
+        seen[deg] = row["female_p50_strength_Nm"]
+    assert abs(seen[45.0] - seen[90.0]) > 0.05 * seen[90.0]

@@ -5,8 +5,9 @@ gravity on every segment plus ``task.load_kg`` in the hands (half at each grip s
 the feet that touch the floor (:func:`~jackpy.analysis.statics.foot_reactions`: the weight shared
 by the lever rule, each foot pushing at its centre of pressure), so the legs carry the body whatever
 the figure's root. The strength of the muscle group that must act comes from the public API of
-:mod:`jackpy.body.strength` (``torque(kind, dof, sex, percentile)``; its data and percentile model are
-documented there). Percent capable = ``100 - P*`` where the group's strength at percentile ``P*``
+:mod:`jackpy.body.strength` (``torque(kind, dof, sex, percentile, angle)`` at each DOF's current
+angle, so the posture curves apply where its data have them: hip, knee, ankle, shoulder elevation,
+elbow flexion; its data, sources and percentile model are documented there and in docs/strength.md). Percent capable = ``100 - P*`` where the group's strength at percentile ``P*``
 equals the required moment, found on a grid of percentiles (1-99, the range that module accepts) and
 interpolated linearly in their normal quantiles z (exact for that module's linear-in-z model); the
 result is clamped to 1-99 % (99 means 99 % or more, 1 means 1 % or fewer). The weakest joint is the one
@@ -30,8 +31,8 @@ from jackpy.ergonomics.posture import SIDES, Posture
 from jackpy.peabody.kinematics import FKResult
 from jackpy.peabody.model import Figure
 
-VALIDITY = ("static exertions; strength from jackpy.body.strength (50th-percentile torques, female ratio, "
-            "normal spread); posture dependence as that module provides it")
+VALIDITY = ("static exertions; strength from jackpy.body.strength (cited means by sex, normal spread) at "
+            "each DOF's angle where its data have a posture curve")
 #: the percentile grid and its normal quantiles
 P_GRID = np.array([1, 2, 5, 10, 20, 30, 40, 50, 60, 70, 80, 90, 95, 98, 99], dtype=float)
 Z_GRID = norm.ppf(P_GRID / 100.0)
@@ -39,11 +40,12 @@ _UPPER_JOINTS = ["atlanto_occipital", "l5_s1"] + [f"{s}_{j}" for s in SIDES for 
 _LEG_JOINTS = [f"{s}_{j}" for s in SIDES for j in ("hip", "knee", "ankle")]
 
 
-def _strength_grid(kind: str, dof: str, sex: str) -> np.ndarray:
-    """(len(Z_GRID), 2): (toward-lower, toward-upper) strength N·m at each grid percentile."""
+def _strength_grid(kind: str, dof: str, sex: str, angle: float | None = None) -> np.ndarray:
+    """(len(Z_GRID), 2): (toward-lower, toward-upper) strength N·m at each grid percentile, at the
+    DOF's ``angle`` (rad) where the strength data have a posture curve."""
     from jackpy.body.strength import torque
 
-    return np.array([torque(kind, dof, sex, float(p)) for p in P_GRID])
+    return np.array([torque(kind, dof, sex, float(p), angle) for p in P_GRID])
 
 
 def percent_capable(required: float, strengths: np.ndarray) -> float:
@@ -78,12 +80,14 @@ def assess(figure: Figure, task: Task, posture: Posture, fk: FKResult | None = N
         j = figure.joint(jn)
         sl = figure.joint_dof_slice(jn)
         kind = joint_kind(jn)
+        disp = np.asarray(j.displacement, dtype=float).reshape(-1)
         for k, dname in enumerate(dof_names_of(j)):
             t = float(tau[sl][k])
+            angle = float(disp[k]) if k < disp.size else None
             row: dict[str, Any] = {"joint": jn, "dof": dname, "moment_Nm": t,
                                    "direction": "toward upper" if t >= 0 else "toward lower"}
             for sex in sexes:
-                grid = _strength_grid(kind, dname, sex)[:, 1 if t >= 0 else 0]
+                grid = _strength_grid(kind, dname, sex, angle)[:, 1 if t >= 0 else 0]
                 row[f"{sex}_capable_pct"] = percent_capable(abs(t), grid)
                 row[f"{sex}_p50_strength_Nm"] = float(grid[list(P_GRID).index(50.0)])
             rows.append(row)
