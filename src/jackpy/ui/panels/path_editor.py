@@ -67,26 +67,10 @@ def start_of(fig: "Figure") -> walk_plan.Point:
     return float(c[0]), float(c[2])
 
 
-def end_facing(path: list[walk_plan.Point]) -> float:
-    """The heading (rad) along the end of the spline through ``path``, unwrapped along the spline
-    from its start (as the footsteps' headings run), so that a path whose heading passes ±180° ends
-    facing its end direction without a turn of a whole circle: ``footsteps.from_path``'s default
-    (the end direction in [−π, π]) stops turning only when that equals the last step's heading."""
-    pts = [np.asarray(path[0], float)]
-    for q in path[1:]:
-        if np.linalg.norm(np.asarray(q, float) - pts[-1]) > 1e-6:  # as from_path drops repeats
-            pts.append(np.asarray(q, float))
-    if len(pts) < 2:
-        return 0.0
-    d = np.diff(footsteps.spline(np.array(pts), SAMPLES), axis=0)
-    d = d[np.linalg.norm(d, axis=1) > 1e-12]
-    return float(np.unwrap(np.arctan2(d[:, 0], d[:, 1]))[-1])
-
-
 def steps_for(st: dict[str, Any], fig: "Figure", path: list[walk_plan.Point]) -> list[Footstep]:
     """The footsteps of ``fig``'s gait along the spline through ``path`` (standing at both ends,
-    facing along the path's end, :func:`end_facing`)."""
-    return footsteps.from_path(gait_of(st, fig), np.array(path, float), facing=end_facing(path))
+    at the end facing along the path, as ``jackpy walk --path``)."""
+    return footsteps.from_path(gait_of(st, fig), np.array(path, float))
 
 
 def _apply(doc: "Document", st: dict[str, Any], fig: "Figure", path: list[walk_plan.Point]) -> None:
