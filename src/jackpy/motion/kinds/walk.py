@@ -35,6 +35,7 @@ KEEP = ("gaze",)
 #: per figure (by id): the figure, its solver, the last walk (plan key, Walk) -- built on first use,
 #: never part of the baked state (``run`` holds only plain data)
 _CACHE: dict[int, list[Any]] = {}
+CACHE_SIZE = 8
 
 
 @register
@@ -117,6 +118,8 @@ class WalkMotion(Motion):
         if entry is None or entry[0] is not fig:
             if tuple(fig.root or ()) != ("pelvis", "centre"):
                 fig.reroot("pelvis", "centre")
+            while len(_CACHE) >= CACHE_SIZE:  # the oldest (a player's earlier bakes make twins)
+                del _CACHE[next(iter(_CACHE))]
             entry = _CACHE[id(fig)] = [fig, WalkSolver(fig, GaitParams.for_figure(fig)), None]
         solver = entry[1]
         key = repr(self.run["steps"])
