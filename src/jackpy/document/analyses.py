@@ -101,6 +101,15 @@ class LiveAnalyses:
             raise LookupError(error)
         return table
 
+    @staticmethod
+    def posture_strength_table(figure: Figure):
+        """The strength table at the figure's current joint angles (the posture curves of
+        :mod:`jackpy.body.strength`; a few ms, so it is recomputed when the posture changes)."""
+        from jackpy.analysis import dof_strengths
+        from jackpy.body.strength import strength_table
+
+        return dof_strengths(strength_table(figure, at_posture=True))
+
     def update_strength(self, figure: Figure) -> None:
         """Torques and utilisation at the figure's posture holding ``load_kg`` in the chosen hand."""
         from jackpy.analysis import (
@@ -114,7 +123,8 @@ class LiveAnalyses:
         )
 
         try:
-            table = self.strength_table(figure)
+            self.strength_table(figure)  # raises (cached) for a figure without a body specification
+            table = self.posture_strength_table(figure)
             hand = figure_parts(figure).hands[self.hand]
         except Exception as exc:
             self.strength, self.strength_error = None, f"strength not available: {exc}"
