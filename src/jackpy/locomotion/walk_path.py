@@ -9,7 +9,8 @@
   to toe-off (the toes stay on the floor);
 - **swing ankle**: top view on the book's quadratic Bézier D1 (ankle at toe-off), D2 (the stance
   ankle mirrored across the walking line), D3 (ankle at heel strike); on a straight path the three
-  are collinear and the curve is the straight 1-D travel; height from the 1-D profile;
+  are collinear and the curve is the straight 1-D travel; height from the 1-D profile; its heading
+  turns from toe-off to heel strike by the book's parabolic twist decay (5.16);
 - **centre site** (pelvis centre): a C¹ cubic Hermite from the mid-foot point at one heel strike to
   the next, tangents along the mean foot heading with the chord as magnitude (a straight, uniform
   path gives the straight line at uniform speed), swaying toward the stance foot; the pelvis faces
@@ -189,7 +190,7 @@ class Walk:
         top = (1 - s) ** 2 * d1[[0, 2]] + 2 * s * (1 - s) * d2 + s * s * d3[[0, 2]]
         y = d1[1] + s * (d3[1] - d1[1]) + swing_lift(p, p0, p1) * np.sin(np.pi * u)
         pitch = swing_pitch(u, p0, p1)
-        psi = _angle_lerp(st[cur].psi, st[nxt].psi, s)
+        psi = swing_yaw(st[cur].psi, st[nxt].psi, u)
         T = foot_transform(p, 0.0, 0.0, psi, pitch, side)
         a = _ankle(p, T, side)
         T[:3, 3] += np.array([top[0], y, top[1]]) - a
@@ -380,6 +381,15 @@ class Walk:
     def frames(self, fps: float) -> list[FrameTargets]:
         n = int(np.floor(self.duration * fps + 1e-9)) + 1
         return [self.at(i / fps) for i in range(n)]
+
+
+def swing_yaw(psi_to: float, psi_hs: float, u: float) -> float:
+    """Heading (rad) of the swing foot at swing fraction ``u`` (time since toe-off over the swing
+    time): its twist from the landing heading decays as the book's parabola (5.16),
+    ``θ̃(t) = θ̃(0)·((t_sw − t)/t_sw)²``, from the toe-off heading to the heel-strike one. (Its
+    roll, the other free rotation (5.15), is zero at toe-off in this kinematic walk.)"""
+    d = (psi_to - psi_hs + np.pi) % (2.0 * np.pi) - np.pi
+    return float(psi_hs + d * (1.0 - float(np.clip(u, 0.0, 1.0))) ** 2)
 
 
 def _hermite(c0, c1, a0, a1, s):
