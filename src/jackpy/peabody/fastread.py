@@ -30,11 +30,13 @@ from jackpy.peabody.notation import (
     CM,
     DEG,
     LENGTH_UNITS,
+    MAX_LINEAR,
     PRIM_ARGS,
     Prim,
     bounded_compose,
     bounded_entries,
     is_rigid_prim,
+    rt_entries,
 )
 
 #: the token parser's relative slack on MAX_MAGNITUDE for a value after its unit is applied
@@ -390,7 +392,7 @@ class _Reader:
                 if item == "site_rt":
                     self.add_site(seg, m["rt_name"], _site_rt(m.group(*_RT_GROUPS)))
                 elif item == "site":
-                    self.add_site(seg, m["site_name"], _prims(m["site_x"], True))
+                    self.add_site(seg, m["site_name"], bounded_entries(_prims(m["site_x"], True)))
                 else:
                     key = _SEGMENT_ITEMS.get(item)  # type: ignore[arg-type]
                     if key is None or key in seen:
@@ -434,8 +436,8 @@ class _Reader:
             raise _Decline
         return fig.add_segment(Segment(name))
 
-    def add_site(self, seg: Segment, name: str, prims: list[Prim]) -> None:
-        entries = bounded_entries(prims)
+    def add_site(self, seg: Segment, name: str, entries: list[float] | None) -> None:
+        """Site ``name`` of ``seg`` with the 16 ``entries`` of its location (None: out of range)."""
         if entries is None or name in seg.sites:
             raise _Decline
         seg.sites[name] = site = Site(name, None)  # type: ignore[arg-type]
@@ -512,22 +514,24 @@ def _com(texts: list[str]) -> np.ndarray:
     return np.array(com) * CM
 
 
-def _site_rt(groups: tuple[str, ...]) -> list[Prim]:
-    """The primitives of a ``site_rt`` match's :data:`_RT_GROUPS`: ``[rot...(bare numbers) *]
-    trans(cm or bare numbers)``."""
+def _site_rt(groups: tuple[str, ...]) -> list[float]:
+    """The location entries (:func:`~jackpy.peabody.notation.rt_entries`) of a ``site_rt`` match's
+    :data:`_RT_GROUPS`: ``[rot...(bare numbers) *] trans(cm or bare numbers)``."""
     _, rx, a, ax, ay, az, aa, x, y, z = groups
-    trans = ("trans", (float(x), float(y), float(z)))  # (out of range: bounded_entries says so)
+    t = (float(x), float(y), float(z))
+    if max(abs(t[0]), abs(t[1]), abs(t[2])) > MAX_LINEAR:
+        raise _Decline
     if rx:
         angle = float(a)
         if not -MAX_MAGNITUDE <= angle <= MAX_MAGNITUDE:
             raise _Decline
-        return [(rx, (angle,)), trans]
+        return rt_entries((rx, (angle,)), t)
     if ax:
         args = (float(ax), float(ay), float(az), float(aa))
         if max(args) > MAX_MAGNITUDE or min(args) < -MAX_MAGNITUDE or max(map(abs, args[:3])) < 1e-12:
             raise _Decline
-        return [("rot", args), trans]
-    return [trans]
+        return rt_entries(("rot", args), t)
+    return rt_entries(None, t)
 
 
 def _bare(vtext: str) -> tuple[list[float], None]:

@@ -23,7 +23,7 @@ import numpy as np
 
 from jackpy.errors import FigureError
 from jackpy.peabody.geometry import Psurf
-from jackpy.peabody.transforms import AXES, rotation, translation
+from jackpy.peabody.transforms import AXES, close, rotation, translation
 
 if TYPE_CHECKING:
     from jackpy.peabody.groups import JointGroup
@@ -177,7 +177,7 @@ class Joint:
 
 def _axis_text(a: np.ndarray) -> str:
     for name, v in (("x", (1, 0, 0)), ("y", (0, 1, 0)), ("z", (0, 0, 1))):
-        if np.allclose(a, v, atol=1e-12):
+        if close(a, v, 1e-12, rtol=1e-5):  # (np.allclose's default rtol)
             return name
     return ",".join(repr(float(x)) for x in a)
 

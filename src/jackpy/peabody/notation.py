@@ -27,7 +27,7 @@ import numpy as np
 from scipy.spatial.transform import Rotation
 
 from jackpy.peabody.lexer import MAX_MAGNITUDE
-from jackpy.peabody.transforms import rotation, scaling, translation
+from jackpy.peabody.transforms import close, rotation, scaling, translation
 
 Prim = tuple[str, tuple[float, ...]]
 
@@ -109,8 +109,12 @@ def _is_simple(prims: list[Prim]) -> bool:
 
 def _simple_entries(prims: list[Prim]) -> list[float]:
     """The 16 entries, row by row, of the product of :func:`_is_simple` primitives."""
-    r0, r1, r2 = _rotation_rows(prims[0]) if len(prims) == 2 else _IDENTITY_ROWS
-    t = prims[-1][1]
+    return rt_entries(prims[0] if len(prims) == 2 else None, prims[-1][1])
+
+
+def rt_entries(rotation: Prim | None, t: tuple[float, ...]) -> list[float]:
+    """The 16 entries, row by row, of ``rotation * trans(t)`` (``t`` in cm; no rotation: none)."""
+    r0, r1, r2 = _rotation_rows(rotation) if rotation is not None else _IDENTITY_ROWS
     return [*r0, t[0] * CM, *r1, t[1] * CM, *r2, t[2] * CM, 0.0, 0.0, 0.0, 1.0]
 
 
@@ -181,6 +185,10 @@ def _matrix_prim(m: np.ndarray) -> Prim:
     return ("matrix", tuple(float(v) for v in row.T.reshape(-1)))
 
 
+_LAST_ROW = np.array([0.0, 0.0, 0.0, 1.0])
+_EYE3 = np.eye(3)
+
+
 def decompose(m: np.ndarray, tol: float = 1e-10) -> list[Prim]:
     """File primitives that :func:`compose` back to ``m`` within ``tol`` (metres).
 
@@ -189,22 +197,22 @@ def decompose(m: np.ndarray, tol: float = 1e-10) -> list[Prim]:
     """
     m = np.asarray(m, dtype=float)
     prims: list[Prim] | None = None
-    if np.allclose(m[3], (0, 0, 0, 1), atol=1e-15, rtol=0):
+    if close(m[3], _LAST_ROW, 1e-15):
         lin = m[:3, :3]
         s = np.linalg.norm(lin, axis=0)
         if np.all(s > 1e-12):
             r = lin / s
             if np.linalg.det(r) < 0:
                 s[0], r[:, 0] = -s[0], -r[:, 0]
-            if np.allclose(r.T @ r, np.eye(3), atol=1e-12, rtol=0):
+            if close(r.T @ r, _EYE3, 1e-12):
                 prims = []
-                if not np.allclose(s, 1.0, atol=1e-15, rtol=0):
+                if not close(s, 1.0, 1e-15):
                     prims.append(("scale", tuple(float(v) for v in s)))
                 prims += _rotation_prims(r)
                 t = m[:3, 3] / CM
                 if np.any(t != 0.0) or not prims:
                     prims.append(("trans", tuple(float(v) for v in t)))
-                if not np.allclose(compose(prims), m, atol=tol, rtol=0):
+                if not close(compose(prims), m, tol):
                     prims = None
     return prims if prims is not None else [_matrix_prim(m)]
 

@@ -872,9 +872,7 @@ class _Parser:
             text = read_text(path)
         except OSError as exc:
             raise self.fig_error(sk, f"cannot read included file {name!r}: {exc.strerror or exc}") from None
-        parser = _Parser(text, str(path))
-        figures = parser.figure_file()
-        _validate(parser, figures)
+        figures = parse_figures(text, str(path))
         inc_dir = os.path.dirname(name)
         for fig in figures:
             for seg in fig.segments.values():

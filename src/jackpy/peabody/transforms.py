@@ -82,3 +82,16 @@ def euler_xyz(angles_rad: tuple[float, float, float]) -> np.ndarray:
     """Rotation Rx(a) then Ry(b) then Rz(c) about fixed axes, i.e. ``Rz @ Ry @ Rx`` (4x4)."""
     a, b, c = angles_rad
     return rotation("z", c) @ rotation("y", b) @ rotation("x", a)
+
+
+def close(a: np.ndarray | tuple[float, ...], b: np.ndarray | tuple[float, ...] | float, atol: float,
+          rtol: float = 0.0) -> bool:
+    """``np.allclose(a, b, atol=atol, rtol=rtol)`` for small arrays, without its overhead (the
+    writer asks it a few times per site): ``|a - b| <= atol + rtol * |b|`` everywhere, equal
+    infinities close, NaN never."""
+    a, b = np.asarray(a, dtype=float), np.asarray(b, dtype=float)
+    with np.errstate(invalid="ignore", over="ignore"):
+        ok = np.abs(a - b) <= (atol + rtol * np.abs(b) if rtol else atol)
+        if rtol:
+            ok &= np.isfinite(b)
+    return bool((ok | (a == b)).all())

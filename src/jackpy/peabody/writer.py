@@ -30,6 +30,7 @@ from jackpy.peabody.model import (
     Segment,
 )
 from jackpy.peabody.notation import CM, DEG, compose, decompose, fmt, prims_text
+from jackpy.peabody.transforms import close
 
 _IDENT = re.compile(r"[A-Za-z_][A-Za-z0-9_]*\Z")
 _IND = "    "
@@ -59,9 +60,9 @@ def _segment_lines(seg: Segment, relocate: Callable[[str], str]) -> list[str]:
     lines = [f"{_IND}segment {_ident(seg.name)} {{"]
     if seg.psurf is not None:
         ps = seg.psurf
-        if np.allclose(compose(ps.scale_text), ps.transform, atol=1e-12, rtol=0):
+        if close(compose(ps.scale_text), ps.transform, 1e-12):
             prims = ps.scale_text
-        elif np.allclose(ps.transform, np.eye(4), atol=1e-15, rtol=0):
+        elif close(ps.transform, np.eye(4), 1e-15):
             prims = []
         else:
             prims = decompose(ps.transform)
