@@ -81,8 +81,12 @@ def normal_matrices(models: np.ndarray) -> np.ndarray:
     and it stays finite for degenerate (zero-length) instances.
     """
     a = models[:, :3, :3]
-    c0, c1, c2 = a[:, :, 0], a[:, :, 1], a[:, :, 2]
-    return np.stack([np.cross(c1, c2), np.cross(c2, c0), np.cross(c0, c1)], axis=2)
+    i, j = [1, 2, 0], [2, 0, 1]  # the cross products by index (np.cross costs more per call)
+    p, q = a[:, i, :], a[:, j, :]  # rows rolled: columns k of p x q by rows
+    out = np.empty_like(a)
+    for k, (u, v) in enumerate(((1, 2), (2, 0), (0, 1))):
+        out[:, :, k] = p[:, :, u] * q[:, :, v] - q[:, :, u] * p[:, :, v]
+    return out
 
 
 def pack(models: np.ndarray, colors: np.ndarray, pick: np.ndarray,
