@@ -8,7 +8,9 @@ cycle, displacement outside limits, wrong value count...) raises :class:`FigureE
 ``file:line:column: figure 'f' joint 'j': ...`` at the token of the part at fault (for graph errors
 the joint's name, the segment's name or the root). Numbers are bounded
 (:data:`~jackpy.peabody.lexer.MAX_MAGNITUDE`), so whatever the reader accepts the writer can write
-and the reader reads back.
+and the reader reads back. Well-formed ``.fig`` text (and each included file) is first offered to
+:mod:`jackpy.peabody.fastread`, which builds the same figures without listing tokens; what it
+declines is read by the token parser here, the one place errors come from.
 
 Relative ``psurf`` file names in the returned figures are relative to the directory of the file
 that was read (for an environment: the ``.env`` file, so names from included figure files are
