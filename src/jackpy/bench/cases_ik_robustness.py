@@ -101,46 +101,61 @@ def _goal(fig: Figure, site: str, rng: np.random.Generator, kind: int, target: n
     return ik.AnyOf(faces)
 
 
-def run_mix(n: int, seed: int = 0) -> dict:
-    """Solve ``n`` random problems; counts of NaN, violations, exceptions and per-problem times."""
+def _random_problem(fig: Figure, sites: list[str], start: np.ndarray, rng: np.random.Generator,
+                    priority: bool) -> ik.Problem:
+    """A random problem from a random start (see the module docstring); ``priority``: 2-4 goals on
+    2-3 levels, each level used."""
+    vm = VariableMap(fig)
+    vm.apply(start)
+    x_target = _random_x(vm, fig, rng, rng.choice([0.3, 1.0]))
+    vm.apply(x_target)
+    frames = {s: fig.site_world(*s.split(".", 1)) for s in sites}
+    vm.apply(_random_x(vm, fig, rng, rng.uniform(0.0, 0.6)))
+    p = ik.Problem(fig)
+    levels = int(rng.integers(2, 4)) if priority else int(rng.integers(1, 4))
+    count = int(rng.integers(levels, 5)) if priority else int(rng.integers(1, 5))
+    for k in range(count):
+        site = sites[int(rng.integers(len(sites)))]
+        target = frames[site].copy()
+        mode = rng.random()
+        if mode < 0.2:  # unreachable
+            target[:3, 3] += rng.normal(size=3) * 3.0
+        elif mode < 0.3:  # singular: the root's own point
+            target[:3, 3] = fig.location[:3, 3]
+        goal = _goal(fig, site, rng, int(rng.integers(8)), target)
+        p.add(goal, level=k if priority and k < levels else int(rng.integers(levels)))
+    return p
+
+
+def run_mix(n: int, seed: int = 0, *, priority: bool = False, time_budget_s: float | None = None) -> dict:
+    """Solve ``n`` random problems (``priority``: multi-level ones only); counts of NaN, violations,
+    exceptions, per-problem times (ms), evaluations and statuses of the priority solves."""
     rng = np.random.default_rng(seed)
     figs = figures()
     starts = {id(f): VariableMap(f).x() for f, _ in figs}
     nan = viol = exc = 0
     times: list[float] = []
     prio: list[float] = []
+    prio_evals: list[int] = []
+    statuses: dict[str, int] = {}
     worst = 0.0
     errors: list[str] = []
     for i in range(n):
         fig, sites = figs[i % len(figs)]
-        vm = VariableMap(fig)
-        vm.apply(starts[id(fig)])
-        x_target = _random_x(vm, fig, rng, rng.choice([0.3, 1.0]))
-        vm.apply(x_target)
-        frames = {s: fig.site_world(*s.split(".", 1)) for s in sites}
-        vm.apply(_random_x(vm, fig, rng, rng.uniform(0.0, 0.6)))
-        p = ik.Problem(fig)
-        levels = int(rng.integers(1, 4))
-        for _ in range(int(rng.integers(1, 5))):
-            site = sites[int(rng.integers(len(sites)))]
-            target = frames[site].copy()
-            mode = rng.random()
-            if mode < 0.2:  # unreachable
-                target[:3, 3] += rng.normal(size=3) * 3.0
-            elif mode < 0.3:  # singular: the root's own point
-                target[:3, 3] = fig.location[:3, 3]
-            p.add(_goal(fig, site, rng, int(rng.integers(8)), target), level=int(rng.integers(levels)))
+        p = _random_problem(fig, sites, starts[id(fig)], rng, priority)
         t0 = time.perf_counter()
         try:
-            ik.solve(p, max_iterations=100)
+            r = ik.solve(p, max_iterations=100, time_budget_s=time_budget_s)
         except Exception as e:  # noqa: BLE001 - every exception counts
             exc += 1
             errors.append(f"{type(e).__name__}: {e}")
             continue
         ms = (time.perf_counter() - t0) * 1e3
         times.append(ms)
-        if len({lv for g in p.goals for lv in [p.level_of(g)]}) > 1:
+        if len({p.level_of(g) for g in p.goals}) > 1:
             prio.append(ms)
+            prio_evals.append(r.evaluations)
+            statuses[r.status] = statuses.get(r.status, 0) + 1
         q = fig.q
         if not np.all(np.isfinite(q)) or any(not np.all(np.isfinite(g.angles)) for g in fig.groups.values()):
             nan += 1
@@ -148,17 +163,39 @@ def run_mix(n: int, seed: int = 0) -> dict:
         worst = max(worst, v)
         viol += v > TOL
     return {"n": n, "nan": nan, "violations": viol, "exceptions": exc, "worst_violation": worst,
-            "times_ms": np.array(times), "priority_ms": np.array(prio), "errors": errors[:5]}
+            "times_ms": np.array(times), "priority_ms": np.array(prio), "priority_evaluations": np.array(prio_evals),
+            "statuses": statuses, "errors": errors[:5]}
+
+
+def _pct(a: np.ndarray, q: float) -> float:
+    return float(np.percentile(a, q)) if a.size else 0.0
 
 
 def robustness(quick: bool) -> Result:
     out = run_mix(300 if quick else 10_000)
     t, pr = out["times_ms"], out["priority_ms"]
-    return Result("ik-robustness", float(np.median(t)), float(np.percentile(t, 90)), None, {
+    return Result("ik-robustness", float(np.median(t)), _pct(t, 90), None, {
         "n": out["n"], "nan": out["nan"], "violations": out["violations"], "exceptions": out["exceptions"],
-        "priority_n": int(pr.size), "priority_p99": float(np.percentile(pr, 99)) if pr.size else 0.0,
-        "priority_max": float(pr.max()) if pr.size else 0.0, "max": float(t.max()) if t.size else 0.0})
+        "priority_n": int(pr.size), "priority_p99": _pct(pr, 99), "priority_max": _pct(pr, 100),
+        "max": _pct(t, 100)})
+
+
+def priority_mix(quick: bool) -> Result:
+    """Multi-level problems only (2-3 levels, each used), untimed box: p50/p90/p99/max (ms) and
+    evaluations; then the same problems with a 20 ms box: the largest overrun of the box."""
+    n = 150 if quick else 600
+    out = run_mix(n, seed=5, priority=True)
+    t, ev = out["priority_ms"], out["priority_evaluations"]
+    box = run_mix(n // 3, seed=5, priority=True, time_budget_s=0.02)
+    return Result("ik-priority-mix", _pct(t, 50), _pct(t, 90), None, {
+        "n": int(t.size), "p99": _pct(t, 99), "max": _pct(t, 100), "evaluations_max": int(ev.max(initial=0)),
+        "evaluations_median": _pct(ev, 50), "statuses": "/".join(f"{k}:{v}" for k, v in sorted(out["statuses"].items())),
+        "box20_max_ms": _pct(box["priority_ms"], 100), "box20_time_limit": box["statuses"].get(ik.TIME_LIMIT, 0),
+        "nan": out["nan"] + box["nan"], "violations": out["violations"] + box["violations"],
+        "exceptions": out["exceptions"] + box["exceptions"]})
 
 
 CASES = [Case("ik-robustness", robustness,
-              "random problems on 3 figures, 1-3 levels, unreachable/singular targets: NaN, violations, exceptions")]
+              "random problems on 3 figures, 1-3 levels, unreachable/singular targets: NaN, violations, exceptions"),
+         Case("ik-priority-mix", priority_mix,
+              "the robustness mix's multi-level problems: p50/p90/p99/max, evaluations; 20 ms box overrun")]
