@@ -47,4 +47,4 @@ def test_failed_command_exit_1(tmp_path, panel_scene, capsys):
     script.write_text("John is a 50 percentile male.\nJohn, walk to the door.\n")
     rc = main(["task", str(script), "--scene", str(panel_scene), "-o", str(tmp_path / "o.motion.json")])
     err = capsys.readouterr().err
-    assert rc == 1 and "walking is not available" in err and f"{script}:2" in err
+    assert rc == 1 and "nothing in the scene is called 'door'" in err and f"{script}:2" in err

@@ -1,5 +1,5 @@
 """Yaps scheduling: sequential by default, together(), After with a delay, With, explicit
-durations, hooks, failures with reasons (walking is not available)."""
+durations, hooks, failures with reasons (a place that is not there)."""
 
 import pytest
 
@@ -40,7 +40,7 @@ def test_times(result):
 def test_failure_reason_and_hooks(result):
     r = {x.name: x for x in result.reports}
     w = r["w"]
-    assert w.status == "failed" and "walking is not available" in w.reason
+    assert w.status == "failed" and "nothing in the scene is called 'door'" in w.reason
     hooks = [x for x in result.reports if x.command == "Look John"]
     assert len(hooks) == 1 and hooks[0].status == "done"
     assert not any(x.command == "Look twf-1" and x.start > 0 for x in result.reports)

@@ -43,7 +43,7 @@ def test_script_panel_errors_and_run(request):
         while (st.running is not None) and time.monotonic() < t_end:
             win.frame()
         assert st.running is None and st.result is not None
-        assert [p.line for p in st.problems] == [3] and "walking is not available" in st.problems[0].message
+        assert [p.line for p in st.problems] == [3] and "nothing in the scene is called 'door'" in st.problems[0].message
         tl = app.doc.timeline
         assert tl is not None and tl.motions[0].kind == "gaze" and "Jane" in app.doc.env.figures
     finally:

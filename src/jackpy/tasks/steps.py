@@ -278,13 +278,3 @@ class Place(Step):
         sim.env.figures[self.obj].location = self.pose.copy()
         sim.kb.rest_on(self.obj, self.supporter)
         return []
-
-
-@dataclass
-class Fail(Step):
-    """A step that cannot run: fails at once with its reason (walking before issue 13 lands)."""
-
-    reason: str = ""
-
-    def begin(self, sim, t):
-        raise TaskError(self.reason)
