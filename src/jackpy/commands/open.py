@@ -53,6 +53,6 @@ def run(args: argparse.Namespace) -> int:
         link = getattr(app, "device_link", None)
         if link is not None:
             link.disconnect()
+        session.finish_autosave(app, clean=False)  # after an exception: wait, keep the recovery file
         window.close()
-    session.discard_recovery(session.recovery_path())
     return 0
