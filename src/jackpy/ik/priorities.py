@@ -67,9 +67,11 @@ HOLD_WEIGHT = 300.0
 ARMIJO = 1e-4
 #: damping of the tangent step ``lambda = (DAMPING_FLOOR + DAMPING |Fk|) * boost`` (scaled units)
 DAMPING, DAMPING_FLOOR = 0.01, 1e-4
+#: the least damping relative to ``|J|_F^2`` (the QP's m x m factor stays positive definite in floating point)
+CONDITION = 1e-12
 #: the tangent step's damping after a full step (divided) and after a shortened one (multiplied)
 RELAX, TIGHTEN = 2.0, 4.0
-#: damping of a restoration step: ``RESTORE_DAMPING_FLOOR + RESTORE_DAMPING |Fh|``
+#: damping of a restoration step: ``RESTORE_DAMPING_FLOOR (1 + |Jh|_F^2) + RESTORE_DAMPING |Fh|``
 RESTORE_DAMPING, RESTORE_DAMPING_FLOOR = 1e-3, 1e-8
 
 
@@ -203,9 +205,10 @@ class Manifold:
             Fh, Jh = self.stacked(ev)
             lower, upper = self._frozen(run, z, 2.0 * (Jh.T @ Fh))
             c = J.T @ F
-            lam = (DAMPING_FLOOR + DAMPING * math.sqrt(G)) * boost
-            d, held, _ = bounded_step(np.vstack([HOLD_WEIGHT * Jh, J]) if self.hi else J, lam, c, lower, upper,
-                                      run.A if rows else None, run.b - run.A @ z if rows else None, held=held)
+            Jm = np.vstack([HOLD_WEIGHT * Jh, J]) if self.hi else J
+            lam = max((DAMPING_FLOOR + DAMPING * math.sqrt(G)) * boost, CONDITION * float(np.sum(Jm * Jm)))
+            d, held, _ = bounded_step(Jm, lam, c, lower, upper,
+                                      run.A if rows else None, np.maximum(run.b - run.A @ z, 0.0) if rows else None, held=held)
             dmax = float(np.max(np.abs(d), initial=0.0))
             gd = 2.0 * float(c @ d)
             if dmax <= run.tol_step or gd >= 0.0 or not math.isfinite(gd):
@@ -283,14 +286,14 @@ class Manifold:
                 return ev, left
             Fh, Jh = self.stacked(ev)
             Gh = float(Fh @ Fh)
-            if left <= 0 or not math.isfinite(Gh) or run.expired():
+            if left <= 0 or not math.isfinite(Gh):
                 return None, left
             z = ev.z
-            lam = RESTORE_DAMPING_FLOOR + RESTORE_DAMPING * math.sqrt(Gh)
+            lam = RESTORE_DAMPING_FLOOR * (1.0 + float(np.sum(Jh * Jh))) + RESTORE_DAMPING * math.sqrt(Gh)
             e, _, _ = bounded_step(Jh, lam, Jh.T @ Fh, run.lo - z, run.hi - z, run.A if rows else None,
-                                   run.b - run.A @ z if rows else None)
+                                   np.maximum(run.b - run.A @ z, 0.0) if rows else None)
             size = float(np.max(np.abs(e), initial=0.0))
-            if not math.isfinite(size) or size <= 1e-15 or size > reach:
+            if not math.isfinite(size) or size <= 1e-15 or size > reach or run.expired():
                 return None, left
             ev = run.evaluate(z + e)
             left -= 1
