@@ -74,7 +74,15 @@ class Workbench:
             view = img[60:560, 260:920]
             return view if view.std() > 5.0 else None  # the 3-D view drawn, not the clear colour
 
-        return wait_for(grab, "the 3-D view", timeout=60, every=0.5)
+        last = [wait_for(grab, "the 3-D view", timeout=60, every=0.5)]
+
+        def still():  # two grabs 0.5 s apart alike: the still frame (full quality), not a moving one
+            now = grab()
+            same = now is not None and differs(now, last[0]) < 0.05
+            last[0] = now if now is not None else last[0]
+            return now if same else None
+
+        return wait_for(still, "a still 3-D view", timeout=60, every=0.5)
 
     def key(self, *keys: str) -> None:
         xdo("windowfocus", "--sync", self.wid)
