@@ -135,7 +135,7 @@ def _settings(app: "App") -> None:
     if changed:
         s.head_drag = HEAD_DRAG[k]
     imgui.set_next_item_width(90)
-    changed, ms = imgui.slider_float("time box (ms)", s.ik_time_budget_s * 1e3, 5.0, 200.0, "%.0f")
+    changed, ms = imgui.slider_float("max time box (ms)", s.ik_time_budget_s * 1e3, 5.0, 200.0, "%.0f")
     if changed:
         s.ik_time_budget_s = ms / 1e3
 
