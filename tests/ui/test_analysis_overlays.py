@@ -5,7 +5,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from conftest import offscreen_renderer_or_skip
+from ui_support import offscreen_renderer_or_skip
 
 from jackpy.analysis import Workspace, eye_view
 from jackpy.ui.analysis_overlays import (

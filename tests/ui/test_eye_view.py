@@ -2,7 +2,7 @@
 
 import numpy as np
 import pytest
-from conftest import offscreen_renderer_or_skip
+from ui_support import offscreen_renderer_or_skip
 
 from jackpy.analysis import eye_view
 from jackpy.ui.eye_view import EYE_VIEW_SIZE, EyeViewport, hidden_segments

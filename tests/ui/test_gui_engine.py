@@ -12,7 +12,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from conftest import in_child_process
+from ui_support import in_child_process
 
 if not os.environ.get("DISPLAY"):
     pytest.skip("window tests need an X display (run under xvfb-run, see scripts/test.sh)",

@@ -6,7 +6,7 @@ import os
 
 import numpy as np
 import pytest
-from conftest import in_child_process
+from ui_support import in_child_process
 
 from jackpy.document import Document
 from jackpy.locomotion import footsteps

@@ -4,7 +4,7 @@ joint inspector and strength bars name DOFs for people. Real window under Xvfb."
 import os
 
 import pytest
-from conftest import in_child_process
+from ui_support import in_child_process
 
 from jackpy.ui.names import dof_key_label, dof_label, joint_label
 

@@ -7,7 +7,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from conftest import in_child_process, offscreen_renderer_or_skip
+from ui_support import in_child_process, offscreen_renderer_or_skip
 
 from jackpy.ui.panels import analysis as ap
 

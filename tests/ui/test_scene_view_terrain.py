@@ -12,7 +12,7 @@ from jackpy.render import Scene
 from jackpy.ui.camera import OrbitCamera
 from jackpy.ui.scene_view import TERRAIN_MESH, SceneView
 
-from conftest import offscreen_renderer_or_skip
+from ui_support import offscreen_renderer_or_skip
 
 EXAMPLES = Path(__file__).resolve().parents[2] / "examples" / "creatures"
 
