@@ -161,6 +161,9 @@ class Renderer:
         self.render_scale = 1.0
         """Fraction (0.25-1) of :attr:`size` that moving frames are drawn at (each side); the
         still frame and every read-back are full size."""
+        self.coarse_skin_scale = 0.5
+        """A moving frame drawn at this :attr:`render_scale` or below draws each skin's coarse
+        level of detail (:func:`~jackpy.render.skinning.coarse_indices`); 0 never does."""
         self.display_triangles: int | None = SOFTWARE_DISPLAY_TRIANGLES if self.software else None
         """Triangle budget for a CAD object's display copy (see ``SceneView.upload``)."""
         self._mesh_program = ctx.program(vertex_shader=shaders.MESH_VERTEX,
@@ -374,10 +377,12 @@ class Renderer:
                     view: np.ndarray, projection: np.ndarray, samples: int, scale: float = 1.0) -> None:
         ctx = self.ctx
         size = self._scaled_size(scale)
+        coarse = False
         if size == self.size:
             fbo, texture, scale = self._target(samples), self._full_texture, 1.0
-        else:  # a moving frame drawn smaller: single-sampled
+        else:  # a moving frame drawn smaller: single-sampled, coarse skins when small enough
             (fbo, texture), samples = self._scaled_target(size), 0
+            coarse = scale <= self.coarse_skin_scale
         centers = {k: m.center for k, m in self._meshes.items()}
         transparent = item_batches(back_to_front(batches.transparent, view, centers))
         lines = [ln for ln in scene.lines if not ln.on_top] + [ln for ln in scene.lines if ln.on_top]
@@ -395,7 +400,7 @@ class Renderer:
 
         ctx.polygon_offset = (1.0, 1.0)
         self._draw(prog, batches.opaque)
-        self._draw_skins(self._skin_program, skins)
+        self._draw_skins(self._skin_program, skins, coarse)
         ctx.polygon_offset = (0.0, 0.0)
         ctx.depth_func = "<="
         self._draw_wireframe(batches.wireframe)
@@ -451,9 +456,10 @@ class Renderer:
         for batch in batches:
             self._meshes[batch.mesh].draw(program, batch.records)
 
-    def _draw_skins(self, program: moderngl.Program, skins: list[tuple[str, np.ndarray]]) -> None:
+    def _draw_skins(self, program: moderngl.Program, skins: list[tuple[str, np.ndarray]],
+                    coarse: bool = False) -> None:
         for key, texels in skins:
-            self._skinned[key].draw(program, texels)
+            self._skinned[key].draw(program, texels, coarse)
 
     def _draw_wireframe(self, batches: list[InstanceBatch]) -> None:
         if not batches:

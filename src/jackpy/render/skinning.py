@@ -7,6 +7,11 @@ per frame a :class:`~jackpy.render.scene.SkinnedItem` streams only the bone matr
 per-bone colour, pick id and highlight, packed in one small float texture (six RGBA texels per
 bone: the matrix's four columns, the colour, then pick id and highlight), which the shader reads
 with ``texelFetch``: no uniform-array size limit, any number of bones.
+
+On a software rasteriser the vertex shading of a skin runs on the main thread, so each skin also
+carries a *coarse* index buffer (:func:`coarse_indices`, about :data:`COARSE_FRACTION` of its
+triangles) over the same vertices: moving frames drawn small (see ``Renderer.coarse_skin_scale``)
+use it, still frames, pictures and picking the full one.
 """
 
 from __future__ import annotations
@@ -20,6 +25,8 @@ from jackpy.render.instancing import pick_array, rgba
 from jackpy.render.scene import DrawItem, SkinnedItem
 
 TEXELS_PER_BONE = 6
+COARSE_FRACTION = 0.25
+"""Triangles of a skin's coarse level of detail, as a fraction of its own."""
 
 
 @dataclass(frozen=True)
@@ -64,6 +71,45 @@ class SkinnedMesh:
         """Linear-blend skinned positions (n,3) for bone ``matrices`` (b,4,4), as the shader computes."""
         m = np.einsum("nk,nkij->nij", self.weights.astype(float), np.asarray(matrices, float)[self.joints])
         return np.einsum("nij,nj->ni", m[:, :3, :3], self.vertices.astype(float)) + m[:, :3, 3]
+
+
+def coarse_indices(mesh: SkinnedMesh, fraction: float = COARSE_FRACTION) -> np.ndarray:
+    """Triangles (m', 3) of a decimated copy of ``mesh`` that reuses its vertices, m' <= ``fraction``
+    of its triangles (at least 1 where it has any).
+
+    Vertex clustering on the rest positions: the vertices in each grid cell collapse onto the one
+    nearest the cell's mean, collapsed and duplicate triangles are dropped, and the cell grows until
+    the budget holds. Every kept vertex is an original one with its own normal, bone indices,
+    weights and owner, so the coarse copy skins, shades and picks as the full mesh does (shape error
+    about one cell; for moving frames only)."""
+    v, f = mesh.vertices.astype(float), mesh.indices.astype(np.int64)
+    budget = max(1, int(len(f) * fraction))
+    if len(f) <= budget:
+        return mesh.indices.copy()
+    lo = v.min(axis=0)
+    edges = np.linalg.norm(v[f[:, 0]] - v[f[:, 1]], axis=1)
+    cell = float(np.median(edges)) or 1e-3
+    while True:
+        key = np.floor((v - lo) / cell).astype(np.int64)
+        n = key.max(axis=0) + 1
+        _, cluster = np.unique((key[:, 0] * n[1] + key[:, 1]) * n[2] + key[:, 2], return_inverse=True)
+        cluster = cluster.reshape(-1)
+        ff = cluster[f]
+        ff = ff[(ff[:, 0] != ff[:, 1]) & (ff[:, 1] != ff[:, 2]) & (ff[:, 0] != ff[:, 2])]
+        rows = np.ascontiguousarray(np.sort(ff, axis=1)).view(np.dtype((np.void, 24))).reshape(-1)
+        ff = ff[np.sort(np.unique(rows, return_index=True)[1])]
+        if 0 < len(ff) <= budget or cell > 1e3:
+            break
+        cell *= 1.15
+    k = cluster.max() + 1
+    counts = np.bincount(cluster, minlength=k).astype(float)
+    mean = np.stack([np.bincount(cluster, v[:, i], k) for i in range(3)], axis=1) / counts[:, None]
+    order = np.lexsort((np.linalg.norm(v - mean[cluster], axis=1), cluster))
+    first = np.ones(len(order), bool)
+    first[1:] = cluster[order][1:] != cluster[order][:-1]
+    representative = np.empty(k, np.int64)
+    representative[cluster[order][first]] = order[first]
+    return np.ascontiguousarray(representative[ff], np.uint32)
 
 
 def stand_in(items: list[DrawItem], skins: list[SkinnedItem]) -> tuple[list[DrawItem], list[SkinnedItem]]:
@@ -117,33 +163,40 @@ class GpuSkinnedMesh:
         self.vbo = ctx.buffer(data.tobytes())
         self.ibo = ctx.buffer(mesh.indices.tobytes())
         self.index_count = mesh.indices.size
+        coarse = coarse_indices(mesh) if mesh.indices.size else mesh.indices
+        self.coarse_ibo = ctx.buffer(coarse.tobytes() or b"\0" * 12)
+        self.coarse_count = coarse.size
+        self.drawn_count = 0
+        """Indices of the last draw (``index_count`` full, ``coarse_count`` coarse)."""
         self.texture = ctx.texture((TEXELS_PER_BONE, max(1, self.n_bones)), 4, dtype="f4")
         self.texture.filter = (moderngl.NEAREST, moderngl.NEAREST)
         self.uploaded = b""
-        self.vaos: dict[int, moderngl.VertexArray] = {}
+        self.vaos: dict[tuple[int, bool], moderngl.VertexArray] = {}
 
-    def draw(self, program: moderngl.Program, texels: np.ndarray) -> None:
-        """Draw the mesh posed by ``texels`` (from :func:`bone_texels`) with ``program``."""
+    def draw(self, program: moderngl.Program, texels: np.ndarray, coarse: bool = False) -> None:
+        """Draw the mesh posed by ``texels`` (from :func:`bone_texels`) with ``program``, its
+        coarse level of detail if ``coarse``. Only changed texels are uploaded."""
         if self.index_count == 0:
             return
         data = np.ascontiguousarray(texels, np.float32).tobytes()
         if data != self.uploaded:
             self.texture.write(data)
             self.uploaded = data
-        vao = self.vaos.get(program.glo)
+        vao = self.vaos.get((program.glo, coarse))
         if vao is None:
             vao = self.ctx.vertex_array(
                 program, [(self.vbo, "3f 3f 4i 4f 1i", "in_position", "in_normal", "in_joints", "in_weights",
                            "in_owner")],
-                index_buffer=self.ibo, index_element_size=4, skip_errors=True)
-            self.vaos[program.glo] = vao
+                index_buffer=self.coarse_ibo if coarse else self.ibo, index_element_size=4, skip_errors=True)
+            self.vaos[(program.glo, coarse)] = vao
         self.texture.use(0)
         program["u_bones"].value = 0
-        vao.render(moderngl.TRIANGLES, vertices=self.index_count)
+        self.drawn_count = self.coarse_count if coarse else self.index_count
+        vao.render(moderngl.TRIANGLES, vertices=self.drawn_count)
 
     def release(self) -> None:
         for vao in self.vaos.values():
             vao.release()
         self.vaos.clear()
-        for obj in (self.vbo, self.ibo, self.texture):
+        for obj in (self.vbo, self.ibo, self.coarse_ibo, self.texture):
             obj.release()
