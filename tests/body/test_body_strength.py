@@ -128,3 +128,20 @@ def test_percent_capable_signature_over_percentiles_1_to_99():
             vals = [torque(kind, dof, sex, p) for p in range(1, 100)]
             assert all(lo > 0 and hi > 0 for lo, hi in vals)
             assert all(a[0] <= b[0] and a[1] <= b[1] for a, b in zip(vals, vals[1:]))
+
+
+@pytest.mark.parametrize("sex, neck_extend, trunk_extend", [("male", 36.4, 240.0), ("female", 26.5, 130.0)])
+def test_neck_base_takes_the_neck_rows_and_the_lumbar_spine_the_trunks(sex, neck_extend, trunk_extend):
+    """C7/T1 carries the head and neck: its strength is the neck's (NECK2007), not the trunk's
+    back extension (KAMON1981), which the lumbar joints keep; posed, so at_posture reads real angles."""
+    from jackpy.body.human import make_human
+    from jackpy.body.skeleton import SPINE_DOFS
+    f = make_human(sex, 50)
+    f.groups["spine"].set_angles(f, np.array([0.3, 0.1, 0.05]))
+    k = SPINE_DOFS.index("flexion")
+    for at_posture in (False, True):
+        t = strength_table(f, at_posture=at_posture)
+        assert t[f"c7_t1[{k}]"][0] == pytest.approx(neck_extend)
+        assert t[f"c7_t1[{k}]"] == t[f"atlanto_occipital[{k}]"]
+        for lumbar in ("l5_s1", "l4_l5", "l3_l4", "l2_l3", "l1_l2"):
+            assert t[f"{lumbar}[{k}]"][0] == pytest.approx(trunk_extend)

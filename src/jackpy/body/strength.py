@@ -45,6 +45,19 @@ SIDES = ("lower", "upper")
 
 Key = tuple[str, str, str, str]  # (joint kind, dof, "lower"|"upper", sex)
 
+#: the strength rows of the neck (strength.csv's NECK2007 / NECKROT_F220 rows, measured at the head)
+NECK_KIND = "atlanto_occipital"
+
+
+def strength_kind(joint: str) -> str:
+    """The joint kind whose strength rows a human joint uses: :func:`joint_kind`, except that the
+    cervical joints (``c7_t1``, the neck's base, which :func:`joint_kind` counts as ``spine`` for
+    its DOF names and the spine group) take the neck's rows, not the trunk's."""
+    kind = joint_kind(joint)
+    if kind == "spine" and joint.startswith("c"):
+        return NECK_KIND
+    return kind
+
 
 @dataclass(frozen=True)
 class StrengthRow:
@@ -205,5 +218,5 @@ def strength_table(figure: Figure, sex: str | None = None, percentile: float | N
         disp = np.asarray(j.displacement, dtype=float).reshape(-1)
         for k, name in enumerate(dof_names_of(j)):
             angle = float(disp[k]) if at_posture and k < disp.size else None
-            out[f"{j.name}[{k}]"] = torque(joint_kind(j.name), name, sex, percentile, angle)
+            out[f"{j.name}[{k}]"] = torque(strength_kind(j.name), name, sex, percentile, angle)
     return out

@@ -25,7 +25,7 @@ import numpy as np
 from jackpy.analysis.statics import GRAVITY, Load
 from jackpy.body import strength as body_strength
 from jackpy.body.human import body_spec
-from jackpy.body.skeleton import dof_names_of, joint_kind
+from jackpy.body.skeleton import dof_names_of
 from jackpy.peabody.groups import VariableMap
 from jackpy.peabody.model import Figure
 
@@ -111,7 +111,7 @@ class LiftingMonitor:
         kinds, dofs = [], []
         for jn in monitored_joints:
             for name in dof_names_of(figure.joint(jn)):
-                kinds.append(joint_kind(jn))
+                kinds.append(body_strength.strength_kind(jn))
                 dofs.append(name)
         self._kinds, self._dofs = kinds, dofs
         peak = np.array([body_strength.torque(k, d, self._sex, self._percentile) for k, d in zip(kinds, dofs)])
