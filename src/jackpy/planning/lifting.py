@@ -62,6 +62,8 @@ PB_MIN_GAIN = 1e-4
 #: the hand has stalled when it has not come this much nearer the goal (m) in STALL_STEPS steps
 STALL_GAIN = 0.002
 STALL_STEPS = 40
+#: a group limit row is touched when the posture is this near it (rad along the row's normal)
+SLIDE_SLACK = 1e-3
 #: largest change of any active variable in one step (rad)
 MAX_JOINT_STEP = np.radians(2.0)
 #: the added joint: the waist's forward/backward bend (the spine group's flexion, spread over the
@@ -323,19 +325,51 @@ class _Lifter:
 
     def apply_step(self, s: ChainState, dx: np.ndarray) -> np.ndarray | None:
         """``s.x`` moved by ``dx`` over the active variables: capped at MAX_JOINT_STEP, clamped at the
-        boxes, halved until the group limits hold; None when no feasible move is left."""
+        boxes, halved until the group limits hold, and where no halving holds them, slid along the
+        group limit rows the posture touches (:meth:`slide`); None when no feasible move is left."""
         big = float(np.abs(dx).max())
         if big < 1e-12:
             return None
         if big > MAX_JOINT_STEP:
             dx = dx * (MAX_JOINT_STEP / big)
+        for attempt in (dx, self.slide(s.x, dx)):
+            x = self.halved(s.x, attempt)
+            if x is not None:
+                return x
+        return None
+
+    def halved(self, x0: np.ndarray, dx: np.ndarray) -> np.ndarray | None:
+        """``x0`` moved by ``dx`` (active variables) clamped at the boxes, halved until the group
+        limits hold (8 tries); None when no try moves."""
         for _ in range(8):
-            x = s.x.copy()
+            x = x0.copy()
             x[self.active] = np.clip(x[self.active] + dx, self.lower[self.active], self.upper[self.active])
-            if self.feasible(x) and np.abs(x - s.x).max() > 1e-12:
+            if self.feasible(x) and np.abs(x - x0).max() > 1e-12:
                 return x
             dx = dx / 2.0
         return None
+
+    def slide(self, x0: np.ndarray, dx: np.ndarray) -> np.ndarray:
+        """``dx`` (active variables) less its components across the group limit rows that ``x0``
+        already touches (within :data:`SLIDE_SLACK`): at a shoulder-complex limit the step slides
+        along the limit instead of being halved to nothing."""
+        full = np.zeros_like(x0)
+        full[self.active] = dx
+        for g, _, sl in self.vmap.group_slices:
+            d, theta = full[sl], x0[sl]
+            free = np.isin(np.arange(sl.start, sl.stop), self.active)
+            if not d[free].any():
+                continue
+            a, b = g.rows_at(theta)
+            near = b - a @ theta <= SLIDE_SLACK * np.linalg.norm(a, axis=1)
+            for _ in range(3):
+                tight = near & (a @ d > 1e-12)
+                if not tight.any():
+                    break
+                rows = a[tight][:, free]
+                d[free] -= rows.T @ np.linalg.lstsq(rows @ rows.T, rows @ d[free], rcond=None)[0]
+            full[sl] = d
+        return full[self.active]
 
     def shoulder_position(self, q: np.ndarray) -> np.ndarray:
         fk = self.monitor.kin.forward(q, self.fig.location)
@@ -403,7 +437,7 @@ class _Lifter:
         frames = [self.frame(s, 0.0, AVAILABLE_TORQUE, 0.0, 0.0)]
         log: list[tuple[int, str]] = []
         waist_at = None
-        pulling, stuck, best, best_at = False, 0, float(np.linalg.norm(task.goal - s.hand)), 0
+        pulling, stuck, best, heading = False, 0, float(np.linalg.norm(task.goal - s.hand)), 0
         pulled = False  # pull back used since the hand last gained on the goal
         reason = f"iteration limit ({task.max_iterations})"
         for it in range(1, task.max_iterations + 1):
@@ -431,15 +465,16 @@ class _Lifter:
                 stuck = 0 if new is not None and s.discomfort - new.discomfort > PB_MIN_GAIN else stuck + 1
                 exhausted = stuck >= PB_PATIENCE
             if dist < best - STALL_GAIN:
-                best, best_at, pulled = dist, it, False
+                best, heading, pulled = dist, 0, False
             pulled = pulled or pulling
-            stalled = it - best_at > STALL_STEPS
+            heading += 0 if pulling else 1  # pull back ignores the goal: its steps do not count as a stall
+            stalled = heading > STALL_STEPS
             if exhausted or stalled:
                 if task.allow_waist and waist_at is None:
                     waist_at = len(frames) - 1
                     self.active = np.concatenate([self.active, self.waist])
                     log.append((waist_at, ADDED_JOINT))
-                    pulling, stuck, best_at = False, 0, it
+                    pulling, stuck, heading = False, 0, 0
                     s = self.monitor.state(s.x, self.active)
                     continue
                 why = ("pull back and reducing moment take turns at the comfort level" if pulled
