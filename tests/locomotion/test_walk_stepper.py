@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from jackpy.locomotion import footsteps, walk_path
-from jackpy.locomotion.stepper import Approach, Planned, Stepper, constrain_landing
+from jackpy.locomotion.stepper import Approach, Balance, Planned, Stepper, constrain_landing
 from jackpy.locomotion.walk_gait import START_TIME
 from walk_cases import figure_and_params
 
@@ -65,3 +65,20 @@ def test_constrain_landing_keeps_the_width_and_the_length():
     # a long step is cut to the longest step, from where the swing foot is
     out = constrain_landing(stance, swing, np.array([0.2, 2.0]), 0.12, 0.6)
     assert np.linalg.norm(out - swing) == pytest.approx(0.6)
+
+
+def test_balance_source_gives_the_landed_footstep_on_demand():
+    """The balance stepper's source through the stepper's next-footstep interface: the swing foot
+    (σ_0's side) lands where the decision proposed, by the shared landing rule; the next ask
+    without a decision ends the steps; a footsteps-only stepper has no walk."""
+    standing = [walk_path.Footstep(0.2, 0.0, 0.3, "right"), walk_path.Footstep(0.0, 0.0, 0.1, "left")]
+    source = Balance(0.12, 1.0)
+    stepper = Stepper(None, standing, source)
+    source.proposed = np.array([-0.1, 0.3])
+    f = stepper.next_footstep()
+    assert f.side == "right" and f.psi == 0.3
+    assert np.allclose(f.point, constrain_landing(standing[1].point, standing[0].point, [-0.1, 0.3], 0.12, 1.0))
+    assert f.x == pytest.approx(0.12)  # pushed out to the least width
+    assert stepper.next_footstep() is None and stepper.stopped
+    with pytest.raises(ValueError, match="footsteps only"):
+        stepper.at(0.0)

@@ -8,7 +8,10 @@ reference point is the stationary foot's reflected through the balance point, ``
 so the balance point lands in the middle of the new polygon ((x, z) = (0.5, 0)); [proposal] the
 step is at most ``max_step`` x leg length and keeps at least ``min_width`` between the feet (the
 footstep rule :func:`jackpy.locomotion.stepper.constrain_landing`, which the incremental walker
-shares).
+shares). The footstep is obtained through the incremental walker's next-footstep interface: the
+decision feeds a :class:`~jackpy.locomotion.stepper.Balance` source and a footsteps-only
+:class:`~jackpy.locomotion.stepper.Stepper` from the feet as they stand asks it for the swing foot's
+footstep; this behavior then swings the foot.
 
 A2 fires when the pelvis yaw differs from the feet's mean yaw by more than ``twist_threshold``
 (about 45°): the lighter foot swings round the other, turned 90° in the twist direction, keeping
@@ -44,7 +47,8 @@ from jackpy.behaviors.feet import FOOT_GOALS, replace_foot_goals
 from jackpy.behaviors.hands import turn_towards
 from jackpy.behaviors.pelvis import feet_yaw, pelvis_yaw
 from jackpy.behaviors.support import convex_hull, floor, signed_distance, wrap
-from jackpy.locomotion.stepper import constrain_landing
+from jackpy.locomotion.stepper import Balance, Stepper
+from jackpy.locomotion.walk_path import Footstep
 from jackpy.peabody.transforms import rotation_matrix
 
 if TYPE_CHECKING:
@@ -214,9 +218,14 @@ class Stepping(BehaviorBase):
         dn = float(np.linalg.norm(d))
         if dn > 1e-9:
             b = b + p.lead * d / dn
-        # the footstep rule shared with the incremental walker (jackpy.locomotion.stepper)
-        new = constrain_landing(ref[other], ref[swing], 2.0 * b - ref[other], p.min_width,
-                                p.max_step * frame.anatomy.leg_length)
+        # the footstep through the incremental walker's next-footstep interface (one stepper for
+        # sensor-driven and scripted stepping): the decision feeds a Balance source, the stepper
+        # asks it for the swing foot's footstep (landed by the shared rule constrain_landing)
+        source = Balance(p.min_width, p.max_step * frame.anatomy.leg_length)
+        source.proposed = 2.0 * b - ref[other]
+        yaw = {s: frame.loop.foot_yaw(s, st.feet[s].target) for s in (swing, other)}
+        standing = [Footstep(float(ref[s][0]), float(ref[s][1]), yaw[s], s) for s in (swing, other)]
+        new = Stepper(None, standing, source).next_footstep().point
         d = new - ref[swing]
         end = st.feet[swing].target.copy()
         end[[0, 2], 3] += d

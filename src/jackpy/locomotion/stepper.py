@@ -86,7 +86,8 @@ class Stepper:
     """Walks gait ``p`` from the standing footsteps ``standing`` (σ_0, σ_1) with footsteps from
     ``source``; :meth:`next_frame` advances time and gives the targets (:class:`FrameTargets`)."""
 
-    def __init__(self, p: GaitParams, standing: list[Footstep], source: Source, max_steps: int = 500) -> None:
+    def __init__(self, p: GaitParams | None, standing: list[Footstep], source: Source, max_steps: int = 500) -> None:
+        """``p`` None: footsteps only (:meth:`next_footstep`; the caller swings the feet itself)."""
         if len(standing) != 2 or {standing[0].side, standing[1].side} != {"left", "right"}:
             raise ValueError("a stepper starts from two standing footsteps, one left and one right")
         self.p, self.source, self.max_steps = p, source, max_steps
@@ -121,7 +122,10 @@ class Stepper:
         if self.stopped:
             return
         if f is None:
-            self.stop()
+            if self.p is None:
+                self.stopped = True
+            else:
+                self.stop()
             return
         if f.side != self.next_side:
             raise ValueError(f"footstep {len(self.steps)} must be the {self.next_side} foot, not the {f.side}")
@@ -129,6 +133,14 @@ class Stepper:
             raise ValueError(f"the footstep source gave more than {self.max_steps} footsteps")
         self.steps.append(f)
         self._walk = None
+
+    def next_footstep(self) -> Footstep | None:
+        """Ask the source for the next footstep now (a step-at-a-time caller such as the balance
+        stepper, which swings the foot itself); the footstep, or None when the walk has ended."""
+        n = len(self.steps)
+        if not self.stopped:
+            self._ask()
+        return self.steps[n] if len(self.steps) > n and not self.stopped else None
 
     def _land(self, k: int) -> float:
         """Heel-strike time of footstep ``k`` (≥ 2; s)."""
@@ -143,6 +155,8 @@ class Stepper:
     @property
     def walk(self) -> Walk:
         """The walk over the footsteps known so far."""
+        if self.p is None:
+            raise ValueError("a stepper without a gait gives footsteps only")
         if self._walk is None:
             self._walk = Walk(self.steps, self.p)
         return self._walk
@@ -215,3 +229,25 @@ class Approach:
         side = stepper.next_side
         q = here + sl * _dir(psi) + (p.step_half_width if side == "left" else -p.step_half_width) * _lat(psi)
         return Footstep(float(q[0]), float(q[1]), float(psi), side)
+
+
+class Balance:
+    """The balance stepper's source (sensor-driven stepping, :mod:`jackpy.behaviors.stepping`):
+    each footstep is where the behavior's step decision wants the swing foot, ``proposed`` (x, z;
+    set before each ask), landed by the shared rule :func:`constrain_landing` (at least
+    ``min_width`` beside the stance foot, at most ``max_length`` from where the foot is; m),
+    keeping the foot's heading. Footstep points here are the behavior's foot reference points."""
+
+    def __init__(self, min_width: float, max_length: float) -> None:
+        self.min_width, self.max_length = float(min_width), float(max_length)
+        self.proposed: np.ndarray | None = None
+
+    def __call__(self, stepper: Stepper) -> Footstep | None:
+        if self.proposed is None:
+            return None
+        side = stepper.next_side
+        swing = next(f for f in reversed(stepper.steps) if f.side == side)
+        stance = next(f for f in reversed(stepper.steps) if f.side != side)
+        q = constrain_landing(stance.point, swing.point, self.proposed, self.min_width, self.max_length)
+        self.proposed = None
+        return Footstep(float(q[0]), float(q[1]), swing.psi, side)

@@ -14,8 +14,10 @@
 - **centre site** (pelvis centre): a C¹ cubic Hermite from the mid-foot point at one heel strike to
   the next, tangents along the mean foot heading with the chord as magnitude (a straight, uniform
   path gives the straight line at uniform speed), swaying toward the stance foot; the pelvis faces
-  along the path tangent and stays upright; its height is Boulic's profile, lowered where a leg
-  would have to stretch beyond ``MAX_LEG`` of its length.
+  along the path tangent and stays upright; its height is the book's hip-height rule (5.14): the
+  stance leg keeps the length ω(t) it has at that moment in the underlying 1-D walk
+  (:meth:`Walk.underlying`, whose height is Boulic's profile, lowered where a leg would have to
+  stretch beyond ``MAX_LEG`` of its length).
 
 All positions world metres, y up.
 """
@@ -80,6 +82,11 @@ def _ankle(p: GaitParams, T: np.ndarray, side: str) -> np.ndarray:
     return T[:3, :3] @ a + T[:3, 3]
 
 
+def _frame(a: float) -> np.ndarray:
+    """Top-view (x, z) frame of heading ``a``: columns forward and left."""
+    return np.array([[np.sin(a), np.cos(a)], [np.cos(a), -np.sin(a)]])
+
+
 def _angle_lerp(a: float, b: float, s: float) -> float:
     d = (b - a + np.pi) % (2.0 * np.pi) - np.pi
     return a + s * d
@@ -88,7 +95,8 @@ def _angle_lerp(a: float, b: float, s: float) -> float:
 class Walk:
     """Targets of a walk over ``steps`` for a figure with gait ``p``; :meth:`at` gives one time."""
 
-    def __init__(self, steps: list[Footstep], p: GaitParams) -> None:
+    def __init__(self, steps: list[Footstep], p: GaitParams, one_d: bool = False) -> None:
+        """``one_d``: this is an underlying 1-D walk (its pelvis height is Boulic's profile itself)."""
         if len(steps) < 2 or {steps[0].side, steps[1].side} != set(SIDES):
             raise ValueError("a walk starts from two standing footsteps, one left and one right")
         for j in range(2, len(steps)):
@@ -106,6 +114,25 @@ class Walk:
             self.key_dir.append(_angle_lerp(steps[j - 1].psi, steps[j].psi, 0.5))
         self.shuffle = self._shuffle_steps()
         self.bank_keys = self._bank_at_keys()
+        #: the underlying 1-D walk (eq. 5.14's ω(t)); None for a 1-D walk itself
+        self._one_cache: tuple[float, FrameTargets] | None = None
+        self.underlying = None if one_d else Walk(self._unrolled(), p, one_d=True)
+
+    def _unrolled(self) -> list[Footstep]:
+        """The footsteps of the underlying straight (1-D) walk, facing along the heading of the
+        first centre-site key: the standing feet as they are about that key, and each later foot
+        σ_{i+1} from the same foot's previous place σ_{i-1} by that stride, taken in the frame of
+        its mean heading (so the 1-D steps are the 2-D ones unrolled: their lengths the chords of
+        the centre-site steps). Only σ_0..σ_i decide σ_i's place, so a walk extended by more
+        footsteps keeps its earlier 1-D steps (the incremental stepper); a straight path unrolls
+        onto itself."""
+        st, a0 = self.steps, self.key_dir[0]
+        R0 = _frame(a0)
+        pts = [self.keys[0] + R0 @ (R0.T @ (s.point - self.keys[0])) for s in st[:2]]
+        for i in range(2, len(st)):
+            m = _angle_lerp(st[i - 2].psi, st[i].psi, 0.5)
+            pts.append(pts[i - 2] + R0 @ (_frame(m).T @ (st[i].point - st[i - 2].point)))
+        return [Footstep(float(q[0]), float(q[1]), a0, s.side) for q, s in zip(pts, st)]
 
     def _shuffle_steps(self) -> list[bool]:
         """Per step j: whether the centre site travels sideways or backwards (more than
@@ -304,6 +331,8 @@ class Walk:
             j = int(np.searchsorted(self.land[2:], t, side="right")) + 2
             k = min(self._stride(j), max(self._stride(j - 1), 0.5)) if j - 1 >= 2 else self._stride(j)
             h = stand + k * pelvis_drop(p, cyc)
+            if self.underlying is not None and not self.shuffle[j]:
+                h = self._hip_height(t, np.array([pt[0], h, pt[1]]), yaw, self.steps[j - 1].side, feet)
         centre = np.array([pt[0], h, pt[1]])
         for side in SIDES:
             if phase[side] != "swing":
@@ -312,6 +341,21 @@ class Walk:
         T[:3, :3] = rot_y(yaw)
         T[:3, 3] = centre
         return T
+
+    def _hip_height(self, t: float, centre: np.ndarray, yaw: float, side: str, feet: dict[str, np.ndarray]) -> float:
+        """The book's hip-height rule (5.14): the stance leg (hip to ankle) has the length ω(t) of
+        the underlying 1-D walk's stance leg at ``t``, so the pelvis height is
+        ``y2 = y1 + sqrt(ω² − (x2 − x1)² − (z2 − z1)²)``, (x1, y1, z1) the stance ankle and
+        (x2, z2) the stance hip's floor point (the pelvis is upright: both hips at y2). A centre
+        site displaced from the 1-D one (banking, curvature) sits lower; a straight path is the
+        1-D height."""
+        one = self._one_d(t)
+        c1 = one.pelvis[:3, 3]
+        yaw1 = float(np.arctan2(one.pelvis[0, 2], one.pelvis[2, 2]))
+        omega = float(np.linalg.norm(self.underlying._hip(c1, yaw1, side) - _ankle(self.p, one.feet[side], side)))
+        hip, a = self._hip(centre, yaw, side), _ankle(self.p, feet[side], side)
+        dh2 = (hip[0] - a[0]) ** 2 + (hip[2] - a[2]) ** 2
+        return float(a[1] + np.sqrt(max(omega * omega - dh2, 0.0)))
 
     def _hip(self, centre: np.ndarray, yaw: float, side: str) -> np.ndarray:
         off = self.p.hip_half_width if side == "left" else -self.p.hip_half_width
@@ -363,6 +407,7 @@ class Walk:
         feet, toes, phase = {}, {}, {}
         for side in SIDES:
             feet[side], toes[side], phase[side] = self.foot(side, t)
+        self._ball_from_1d(t, feet, phase)
         pel = self.pelvis(t, {s: feet[s] for s in SIDES}, {s: ("swing" if phase[s] != "heel" else "heel")
                                                            for s in SIDES})
         yaw = float(np.arctan2(pel[0, 2], pel[2, 2]))
@@ -374,6 +419,32 @@ class Walk:
                     phase[side] = "ball"
                 pel[1, 3] = min(pel[1, 3], self._reach_top(pel[:3, 3], yaw, side, feet[side]))
         return FrameTargets(pel, feet, toes, self.arms(t), phase)
+
+    def _step_at(self, t: float) -> int | None:
+        """The step running at ``t`` (footstep j swinging in), None standing."""
+        if len(self.steps) == 2 or t < START_TIME or t >= self.land[-1]:
+            return None
+        return int(np.searchsorted(self.land[2:], t, side="right")) + 2
+
+    def _one_d(self, t: float) -> FrameTargets:
+        """The underlying 1-D walk's targets at ``t`` (the last time asked is kept)."""
+        if self._one_cache is None or self._one_cache[0] != t:
+            self._one_cache = (t, self.underlying.at(t))
+        return self._one_cache[1]
+
+    def _ball_from_1d(self, t: float, feet: dict[str, np.ndarray], phase: dict[str, str]) -> None:
+        """The book's stance leg: the stance foot's ball-of-foot angle is the 1-D walk's (where the
+        1-D heel is raised further, so is this one)."""
+        j = self._step_at(t)
+        if self.underlying is None or j is None or self.shuffle[j]:
+            return
+        side = self.steps[j - 1].side
+        if phase[side] not in ("flat", "ball"):
+            return
+        pitch = lambda T: float(np.arcsin(np.clip(-T[1, 2], -1.0, 1.0)))  # noqa: E731
+        p1 = pitch(self._one_d(t).feet[side])
+        if p1 > pitch(feet[side]) + 1e-12:
+            feet[side], phase[side] = self._flat(j - 1, p1), "ball"
 
     def _standing_on(self, side: str, t: float) -> int:
         return max(j for j in self.by_side[side] if self.land[j] <= t or j < 2)
