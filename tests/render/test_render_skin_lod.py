@@ -77,3 +77,31 @@ def test_moving_small_frames_draw_the_coarse_skin_still_frames_the_full(human):
         assert np.array_equal(r.read_pixels(), small)
     finally:
         r.release()
+
+
+@pytest.mark.parametrize("nearest", [True, False])
+def test_a_small_frame_is_stretched_with_the_stretch_filter(human, nearest):
+    import moderngl
+
+    fig, env = human
+    try:
+        ctx = create_egl_context()
+    except Exception as exc:  # no EGL device at all
+        pytest.skip(f"no EGL OpenGL context available: {exc}")
+    r = Renderer(ctx, (160, 160), samples=0)
+    assert r.stretch_filter == (moderngl.NEAREST if r.software else moderngl.LINEAR)
+    r.stretch_filter = moderngl.NEAREST if nearest else moderngl.LINEAR
+    view = SceneView()
+    view.upload(r, env)
+    screen = ctx.framebuffer([ctx.renderbuffer((160, 160), 4)])
+    try:
+        r.render_scale = 0.5
+        _draw(r, view, env, fig, 0.0)
+        r.blit(screen)
+        img = np.frombuffer(screen.read(components=4), np.uint8).reshape(160, 160, 4).astype(int)
+        blocks = img.reshape(80, 2, 80, 2, 4)
+        doubled = np.all(blocks == blocks[:, :1, :, :1, :])  # every 2x2 block one pixel of the small frame
+        assert doubled == nearest
+    finally:
+        screen.release()
+        r.release()

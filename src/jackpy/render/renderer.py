@@ -164,6 +164,11 @@ class Renderer:
         self.coarse_skin_scale = 0.5
         """A moving frame drawn at this :attr:`render_scale` or below draws each skin's coarse
         level of detail (:func:`~jackpy.render.skinning.coarse_indices`); 0 never does."""
+        self.stretch_filter = moderngl.NEAREST if self.software else moderngl.LINEAR
+        """How a frame drawn smaller is stretched (:meth:`blit`, a window's image of
+        :attr:`color_texture`): bilinear on a GPU; nearest on a software rasteriser, where
+        bilinear sampling over a 1280x800 view cost ~24 ms, ~1.6x nearest (moving frames only;
+        the still frame is copied 1:1)."""
         self.display_triangles: int | None = SOFTWARE_DISPLAY_TRIANGLES if self.software else None
         """Triangle budget for a CAD object's display copy (see ``SceneView.upload``)."""
         self._mesh_program = ctx.program(vertex_shader=shaders.MESH_VERTEX,
@@ -206,6 +211,8 @@ class Renderer:
         """MSAA samples of the image in :attr:`color_texture` (-1: nothing drawn yet)."""
         self.drawn_scale = 1.0
         """The :attr:`render_scale` the image in :attr:`color_texture` was drawn at."""
+        self.drawn_coarse = False
+        """Whether that image drew the skins' coarse level of detail."""
         self.frames_drawn = 0
         """Frames actually drawn (a :meth:`render` of an unchanged frame draws nothing)."""
 
@@ -329,7 +336,8 @@ class Renderer:
     def refine_pending(self) -> bool:
         """Whether the image on show was drawn with fewer samples than a still frame gets: a later
         :meth:`render` (or :meth:`refine`) of the same frame will draw it again, anti-aliased."""
-        return 0 <= self.drawn_samples and (self.drawn_samples < self.still_samples or self.drawn_scale < 1.0)
+        return 0 <= self.drawn_samples and (self.drawn_samples < self.still_samples or self.drawn_scale < 1.0
+                                          or self.drawn_coarse)
 
     def render(self, scene: Scene, view: np.ndarray, projection: np.ndarray) -> bool:
         """Draw ``scene`` seen through 4x4 ``view`` (world to camera) and ``projection``.
@@ -369,7 +377,7 @@ class Renderer:
 
     def _full_size(self) -> None:
         """Redraw the last frame at full size (same samples) if it was drawn smaller."""
-        if self.drawn_scale < 1.0 and self._last is not None and self._last_scene is not None:
+        if (self.drawn_scale < 1.0 or self.drawn_coarse) and self._last is not None and self._last_scene is not None:
             batches, _, view, projection = self._last
             self._draw_frame(self._last_scene, batches, self._last_skins, view, projection, self.drawn_samples)
 
@@ -377,12 +385,13 @@ class Renderer:
                     view: np.ndarray, projection: np.ndarray, samples: int, scale: float = 1.0) -> None:
         ctx = self.ctx
         size = self._scaled_size(scale)
-        coarse = False
+        coarse = scale < 1.0 and scale <= self.coarse_skin_scale  # a moving frame at low quality
         if size == self.size:
-            fbo, texture, scale = self._target(samples), self._full_texture, 1.0
-        else:  # a moving frame drawn smaller: single-sampled, coarse skins when small enough
+            fbo, texture = self._target(samples), self._full_texture
+            scale = 1.0
+        else:  # a moving frame drawn smaller: single-sampled
             (fbo, texture), samples = self._scaled_target(size), 0
-            coarse = scale <= self.coarse_skin_scale
+            texture.filter = (self.stretch_filter, self.stretch_filter)  # as the blit or window shows it
         centers = {k: m.center for k, m in self._meshes.items()}
         transparent = item_batches(back_to_front(batches.transparent, view, centers))
         lines = [ln for ln in scene.lines if not ln.on_top] + [ln for ln in scene.lines if ln.on_top]
@@ -434,6 +443,7 @@ class Renderer:
             ctx.copy_framebuffer(self._resolve_fbo, fbo)
         self.color_texture = texture
         self.drawn_scale = scale
+        self.drawn_coarse = coarse
         pickable = [i for i in batches.transparent if i.pick_id is not None]
         self._last = (batches, item_batches(pickable), np.array(view), np.array(projection))
         self._last_skins = skins
@@ -525,7 +535,7 @@ class Renderer:
 
     def blit(self, destination: moderngl.Framebuffer) -> None:
         """Copy the last rendered image into ``destination`` (e.g. a window's ``ctx.screen``); one
-        drawn smaller is stretched over it (bilinear), as a window shows :attr:`color_texture`."""
+        drawn smaller is stretched over it (with :attr:`stretch_filter`)."""
         if self.color_texture is self._full_texture:
             self.ctx.copy_framebuffer(destination, self._resolve_fbo)
             return
