@@ -10,7 +10,8 @@ passes by the deadline), so the frame rate follows.
 
 When even the smallest box does not fit, or frames stay over the target, the budget steps down the
 quality :data:`LADDER` one rung at a time (fewer solver iterations per pass, fewer COM passes, a
-smaller 3-D view drawn while things move); after ``RECOVER_FRAMES`` frames well under the target
+smaller 3-D view drawn while things move, at 1/2 with the skins' coarse level of detail: see
+``Renderer.coarse_skin_scale``); after ``RECOVER_FRAMES`` frames well under the target
 it steps back up. A still frame is always drawn at full size and anti-aliased by the renderer.
 
 The window switches the budget on (:class:`~jackpy.ui.window.Window`); an App without a window
