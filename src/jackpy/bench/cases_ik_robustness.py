@@ -63,7 +63,11 @@ def _random_x(vm: VariableMap, fig: Figure, rng: np.random.Generator, fraction: 
             u[sl] = rng.uniform(g.lower, g.upper)
         else:
             u[sl] = g.angles
-    return vm.x() * (1 - fraction) + u * fraction
+    x = vm.x() * (1 - fraction) + u * fraction
+    for g, _, sl in vm.group_slices:  # a group's region need not be convex (the shoulder's two
+        if not g.is_feasible(x[sl]):  # pieces): a blend of two feasible points may leave it
+            x[sl] = u[sl]
+    return x
 
 
 def violation(fig: Figure) -> float:

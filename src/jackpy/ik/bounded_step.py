@@ -83,6 +83,8 @@ def bounded_step(J: np.ndarray, lam: float, c: np.ndarray, lower: np.ndarray, up
     if n == 0:
         return d, np.zeros(0, dtype=bool), 0
     rows_on = A is not None and A.shape[0] > 0
+    if rows_on:  # the start d = 0 is feasible: a slack rounded below zero is zero (else the final
+        r = np.maximum(np.asarray(r, dtype=float), 0.0)  # shrink's factor r / Ad turns negative)
     if compiled and _box_step_compiled is not None:
         h = np.zeros(n, dtype=bool) if held is None else np.array(held, dtype=bool)
         box = _box_step_compiled(np.ascontiguousarray(J, dtype=float), float(lam),
