@@ -78,7 +78,7 @@ def test_head_aim_goal_holds_with_behaviors():
 
 @pytest.fixture(scope="module")
 def renderer():
-    from tests.ui.conftest import offscreen_renderer_or_skip
+    from ui_support import offscreen_renderer_or_skip
 
     r = offscreen_renderer_or_skip(W, H)
     yield r
