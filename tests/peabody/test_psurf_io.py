@@ -100,3 +100,14 @@ def test_pss_with_huge_coordinates_is_refused(tmp_path: Path) -> None:
     ok = tmp_path / "ok.obj"
     ok.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf -3 -2 -1\n")
     np.testing.assert_allclose(load_mesh(ok).vertices[1], [0.01, 0, 0])  # (OBJ psurfs are cm)
+
+
+def test_a_mesh_changed_in_place_is_written_anew_not_from_the_text_cache():
+    mesh = Mesh(np.array([[0.0, 0, 0], [0.01, 0, 0], [0, 0.01, 0]]), np.array([[0, 1, 2]]))
+    first = psurf_to_text(mesh, "a")
+    assert psurf_to_text(mesh, "a") == first
+    assert psurf_to_text(mesh, "b") != first  # the comment is part of the text
+    mesh.vertices[1, 0] = 0.02  # edited in place: same object, other content
+    again = psurf_to_text(mesh, "a")
+    assert again != first
+    assert np.allclose(parse_psurf(again).vertices, mesh.vertices)

@@ -14,8 +14,8 @@ its scene) until it is recovered or discarded.
 
 :class:`Autosaver` takes a :func:`~jackpy.document.session.snapshot` of the document on the
 caller's thread (about 30 ms for the default scene) and serialises and writes it on its one worker
-thread (about 1.5 s: serialising the human's surfaces and segments two thirds, the files and fsyncs
-one third), one write at a time, atomically (:func:`jackpy.document.session.write`).
+thread (about 0.3 s for the default scene once its surfaces' text is cached, 0.7 s the first time; see
+docs/workbench.md), one write at a time, atomically (:func:`jackpy.document.session.write`).
 """
 
 from __future__ import annotations

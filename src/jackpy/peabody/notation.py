@@ -166,8 +166,22 @@ def is_rigid_prim(prim: Prim) -> bool:
                 and np.linalg.det(r) > 0)
 
 
+def _rotvec(r: np.ndarray) -> np.ndarray:
+    """Rotation vector (radians) of the rotation matrix ``r``: closed form (the axis from the
+    skew part, the angle by ``atan2``) away from a half turn, where it is well conditioned; scipy's
+    quaternion route near one."""
+    w = np.array([r[2, 1] - r[1, 2], r[0, 2] - r[2, 0], r[1, 0] - r[0, 1]])
+    sin2 = math.sqrt(float(w @ w))  # 2 sin(angle)
+    angle = math.atan2(sin2, float(r[0, 0] + r[1, 1] + r[2, 2]) - 1.0)
+    if angle > 3.0:
+        return Rotation.from_matrix(r).as_rotvec()
+    if sin2 == 0.0:
+        return np.zeros(3)
+    return w * (angle / sin2)
+
+
 def _rotation_prims(r: np.ndarray) -> list[Prim]:
-    rotvec = Rotation.from_matrix(r).as_rotvec()
+    rotvec = _rotvec(r)
     angle = float(np.linalg.norm(rotvec))
     if angle < 1e-15:
         return []

@@ -14,7 +14,10 @@ Polygons are triangulated as fans on reading (so they should be convex). ``.obj`
 
 from __future__ import annotations
 
+import hashlib
 import os
+import threading
+from collections import OrderedDict
 from pathlib import Path
 
 import numpy as np
@@ -106,8 +109,37 @@ def read_psurf(path: str | os.PathLike[str], limit: int = MAX_MESH_BYTES) -> Mes
 PSURF_DECIMALS = 4
 
 
+#: texts of recently written meshes, by a digest of their content: every autosave writes the
+#: generated human's surfaces again, and they rarely change (formatting is most of a save's time)
+TEXT_CACHE_ENTRIES = 512
+_texts: OrderedDict[bytes, str] = OrderedDict()
+_texts_lock = threading.Lock()
+
+
 def psurf_to_text(mesh: Mesh, comment: str | None = None) -> str:
-    """``.pss`` text of a mesh (vertices in centimetres to 1e-4 cm, triangles as faces)."""
+    """``.pss`` text of a mesh (vertices in centimetres to 1e-4 cm, triangles as faces).
+
+    The text of a mesh already written with the same vertices, faces and comment is reused (a
+    bounded cache keyed by a BLAKE2 digest of the content, so a mesh changed in place is
+    formatted anew)."""
+    key = hashlib.blake2b(np.ascontiguousarray(mesh.vertices, dtype=float).tobytes(), digest_size=20)
+    key.update(np.ascontiguousarray(mesh.faces, dtype=np.int64).tobytes())
+    key.update(str(len(mesh.vertices)).encode() + b"\0" + (comment or "").encode("utf-8", "surrogatepass"))
+    digest = key.digest()
+    with _texts_lock:
+        text = _texts.get(digest)
+        if text is not None:
+            _texts.move_to_end(digest)
+            return text
+    text = _format_psurf(mesh, comment)
+    with _texts_lock:
+        _texts[digest] = text
+        while len(_texts) > TEXT_CACHE_ENTRIES:
+            _texts.popitem(last=False)
+    return text
+
+
+def _format_psurf(mesh: Mesh, comment: str | None) -> str:
     lines = [f"# {c}" for c in (comment.splitlines() if comment else [])]
     verts = np.round(mesh.vertices / CM, PSURF_DECIMALS)
     lines += ["v " + " ".join(fmt(float(x)) for x in v) for v in verts]
