@@ -38,7 +38,9 @@ def _window(layout_file: Path | None = None) -> tuple[App, Window]:
     return app, Window(app, "jackpy", (1280, 800), visible=False, layout_file=layout_file)
 
 
-def _save(name: str) -> Path:
+def _settle_and_save(win: Window, name: str) -> Path:
+    for _ in range(SETTLE_FRAMES):
+        win.frame()
     screen = moderngl.get_context().screen
     rgb = Image.frombytes("RGB", (screen.width, screen.height), screen.read(components=3))
     out = FIGURES / f"{name}.png"
@@ -49,9 +51,7 @@ def _save(name: str) -> Path:
 def default_layout() -> None:
     _, win = _window()
     try:
-        for _ in range(SETTLE_FRAMES):
-            win.frame()
-        _save("default_layout")
+        _settle_and_save(win, "default_layout")
     finally:
         win.close()
 
@@ -67,9 +67,7 @@ def old_layout_new_panel() -> None:
     try:
         for title in NEW_PANELS:
             win.ui.open_panels[title] = True
-        for _ in range(SETTLE_FRAMES):
-            win.frame()
-        _save("old_layout_new_panel")
+        _settle_and_save(win, "old_layout_new_panel")
     finally:
         win.close()
 
@@ -96,9 +94,7 @@ def path_editor() -> None:
             imgui.set_window_size(pe.TITLE, (700, 580))
 
         win.panels_frame(float_it)
-        for _ in range(SETTLE_FRAMES):
-            win.frame()
-        _save("path_editor")
+        _settle_and_save(win, "path_editor")
     finally:
         win.close()
 
