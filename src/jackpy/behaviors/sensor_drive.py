@@ -22,6 +22,13 @@ frame at a time, in the book's order:
    behavior when the dragged balance point nears the edge of the feet or the pelvis twists past
    the feet) and the IK passes.
 
+**Split frames** (``DriveConfig.split``, live driving): a sample's frame solves only what the
+sensors drive at their rate: the spine (2., by forward kinematics) and the arms (3., the loop's
+own arm/head pass with its cached problem, the body frozen). The pelvis servo and the loop's full
+step (4.: every behavior and pass) run in :meth:`SensorDrive.idle`, in the time before the next
+sample is due, time-boxed to end by then; when no idle time comes, every ``body_every``-th sample
+frame is a full one, and so is every frame while a step is under way. [proposal]
+
 Samples are read without blocking (the driver's latest-value store); a frame with no new sample
 still steps the loop (a step in progress goes on). Smoothing (one-euro, per part) is off by
 default. :meth:`SensorDrive.calibrate` captures the transmitter placement and each sensor's offset
@@ -41,7 +48,8 @@ from typing import Any
 import numpy as np
 
 from jackpy.behaviors import manipulation as m
-from jackpy.behaviors.loop import BehaviorLoop, FrameReport
+from jackpy.behaviors.anatomy import SIDES
+from jackpy.behaviors.loop import BehaviorLoop, Frame, FrameReport
 from jackpy.behaviors.support import floor
 from jackpy.devices.flock.driver import Sample
 from jackpy.devices.recording import Recording
@@ -55,8 +63,11 @@ from jackpy.devices.sensors import (
     spine_angles,
 )
 from jackpy.errors import DeviceError
+from jackpy.ik import solve
 
 HANDS = {"left_palm": "left", "right_palm": "right"}
+#: behaviors whose goals go only to the loop's head-and-arm pass (a split frame runs these)
+ARM_BEHAVIORS = ("gaze", "hands", "limit springs")
 
 
 @dataclass
@@ -68,7 +79,11 @@ class DriveConfig:
     spine bend; ``place_transmitter``: calibration places the transmitter from the waist sensor
     (else the configured placement is kept); ``frame_budget_ms``: bounded work per frame (live
     driving, CPU ms; :class:`FrameBudget`): the loop's solver iterations are cut while frames run
-    over the budget and given back while they run well under it (None: the loop's own settings)."""
+    over the budget and given back while they run well under it (None: the loop's own settings);
+    ``split``: sample frames solve the spine and arms only, the rest runs in :meth:`SensorDrive.idle`
+    (module docstring), or in every ``body_every``-th frame when no idle step came;
+    ``idle_min_ms``: an idle step starts only with at least this much time (ms) left before the
+    next sample."""
 
     sensors: SensorConfig = field(default_factory=default_config)
     smoothing: bool = False
@@ -83,6 +98,9 @@ class DriveConfig:
     spine_iterations: int = 2
     place_transmitter: bool = True
     frame_budget_ms: float | None = None
+    split: bool = False
+    body_every: int = 4
+    idle_min_ms: float = 3.0
 
 
 @dataclass
@@ -97,7 +115,8 @@ class DriveReport:
     against the waist sensor, and ``spine_target`` that turn (same order and units);
     ``arrival`` the host time (``time.perf_counter``) the newest consumed sample arrived, or None
     for samples handed in without times of this clock; ``solved`` the time the solve ended;
-    ``step_ms`` the frame's cost; ``loop`` the behavior loop's report (None when not stepped)."""
+    ``step_ms`` the frame's cost; ``loop`` the behavior loop's report (None when not stepped: not
+    calibrated, or a split frame, which solved the spine and arms only)."""
 
     frame: int
     fresh: list[int]
@@ -187,6 +206,12 @@ class SensorDrive:
         self._spine_offset = np.zeros(3)  # last frame's command minus target: the warm start
         self.budget = (FrameBudget(loop, self.config.frame_budget_ms)
                        if self.config.frame_budget_ms is not None else None)
+        if self.config.body_every < 1:
+            raise DeviceError(f"body_every must be >= 1, not {self.config.body_every}")
+        self._targets: dict[str, np.ndarray] = {}
+        self._owed = 0  # split frames since the loop last stepped (its behaviors and body pass)
+        self.split_frames = 0  # frames that solved the spine and arms only
+        self.idle_steps = 0  # loop steps run by idle()
 
     # ----- calibration ----------------------------------------------------------------------------
     def reference_poses(self) -> dict[str, np.ndarray]:
@@ -210,6 +235,8 @@ class SensorDrive:
         self._spine = np.zeros(3)
         self._spine_applied = np.zeros(3)
         self._spine_offset = np.zeros(3)
+        self._targets = {}
+        self._owed = 0
         for b, s in samples.items():
             self._last_seq[b] = s.seq
         if self.smoother is not None:
@@ -272,32 +299,13 @@ class SensorDrive:
             ts = max(s.time for s in samples.values())
             targets = self.smoother(targets, ts)
         loop = self.loop
+        split = cfg.split and self._can_split()
         if fresh:
-            # 1. pelvis: orientation goal, floor position servoed through the balance point
-            pel = targets.get("pelvis")
-            if cfg.pelvis and pel is not None:
-                # where the COM belongs for the pelvis to sit on its target (the body's current
-                # COM-to-pelvis offset kept); the balance point moves towards it, at most
-                # pelvis_max_shift a frame. It is no integral, so nothing winds up while the feet
-                # hold the body back: the point reaches the edge of the feet and a step follows.
-                com = floor(loop.posture()[1])
-                err = cfg.pelvis_gain * floor(pel[:3, 3] - self._site("pelvis")[:3, 3])
-                st = loop.state
-                base = st.com_drag if st.com_drag is not None else st.balance_point
-                want = com + err
-                if float(np.linalg.norm(base - com)) > 0.01 and float(np.linalg.norm(err)) > 0.02 \
-                        and float(err @ (base - com)) > 0.0:
-                    # the feet hold the COM back from its goal: push the point on towards the
-                    # edge of the support polygon, where the stepping behavior takes a step
-                    want = base + err
-                shift = want - base
-                n = float(np.linalg.norm(shift))
-                if n > cfg.pelvis_max_shift:
-                    shift *= cfg.pelvis_max_shift / n
-                if self._stepping():  # a step in progress owns the balance point
-                    shift = np.zeros(2)
-                m.move_pelvis(loop, rotation=pel[:3, :3], translation=np.array([shift[0], 0.0, shift[1]]))
+            self._targets = targets
+            if not split:
+                self._drive_pelvis(targets)
             # 2. spine from the neck against the waist, measured from the calibration pose
+            pel = targets.get("pelvis")
             if cfg.torso and pel is not None and "neck" in targets and "neck" in self._neutral:
                 self._spine = self._bend(pel, targets["neck"])
             # 3. arms: palm sensors are the palm sites' position + orientation goals
@@ -305,8 +313,15 @@ class SensorDrive:
                 for part, side in HANDS.items():
                     if part in targets and side in loop.state.hands:
                         m.hand_on_site(loop, side, targets[part])
-        # 4. COM, stepping and legs: the behaviors and the IK
-        report = loop.step()
+        # 4. COM, stepping and legs: the behaviors and the IK (split: the arms only)
+        if split:
+            self._solve_arms()
+            report = None
+            self._owed += 1
+            self.split_frames += 1
+        else:
+            report = loop.step()
+            self._owed = 0
         self.frames += 1
         solved = time.perf_counter()
         if self.budget is not None:  # the work of this thread, not the time others took the CPU
@@ -315,8 +330,74 @@ class SensorDrive:
                   for p, t in targets.items() if p in self.sites}
         return DriveReport(self.frames, fresh, skipped, targets, errors,
                            tuple(float(v) for v in self._spine_applied) if cfg.torso else None,
-                           newest if live else None, solved, (solved - t0) * 1e3, report, list(report.notes),
+                           newest if live else None, solved, (solved - t0) * 1e3, report,
+                           list(report.notes) if report is not None else ["split frame"],
                            tuple(float(v) for v in self._spine) if cfg.torso else None)
+
+    def _drive_pelvis(self, targets: Mapping[str, np.ndarray]) -> None:
+        """1. pelvis: orientation goal, floor position servoed through the balance point."""
+        cfg, loop = self.config, self.loop
+        pel = targets.get("pelvis")
+        if not cfg.pelvis or pel is None:
+            return
+        # where the COM belongs for the pelvis to sit on its target (the body's current
+        # COM-to-pelvis offset kept); the balance point moves towards it, at most
+        # pelvis_max_shift a frame. It is no integral, so nothing winds up while the feet
+        # hold the body back: the point reaches the edge of the feet and a step follows.
+        com = floor(loop.posture()[1])
+        err = cfg.pelvis_gain * floor(pel[:3, 3] - self._site("pelvis")[:3, 3])
+        st = loop.state
+        base = st.com_drag if st.com_drag is not None else st.balance_point
+        want = com + err
+        if float(np.linalg.norm(base - com)) > 0.01 and float(np.linalg.norm(err)) > 0.02 \
+                and float(err @ (base - com)) > 0.0:
+            # the feet hold the COM back from its goal: push the point on towards the
+            # edge of the support polygon, where the stepping behavior takes a step
+            want = base + err
+        shift = want - base
+        n = float(np.linalg.norm(shift))
+        if n > cfg.pelvis_max_shift:
+            shift *= cfg.pelvis_max_shift / n
+        if self._stepping():  # a step in progress owns the balance point
+            shift = np.zeros(2)
+        m.move_pelvis(loop, rotation=pel[:3, :3], translation=np.array([shift[0], 0.0, shift[1]]))
+
+    # ----- split frames -------------------------------------------------------------------------------
+    def _can_split(self) -> bool:
+        """Whether this frame may solve the arms only: the loop stepped within the last
+        ``body_every`` frames, no step is under way (its feet move every frame), the limbs are
+        solved together and no user goal joins them (the limbs problem is then the loop's own)."""
+        loop = self.loop
+        return self._owed < self.config.body_every - 1 and loop.combine_limbs and not loop.user_goals and not self._stepping()
+
+    def _solve_arms(self) -> None:
+        """The loop's head-and-arms pass on this frame's goals, body frozen: the goals of the
+        behaviors that feed only that pass, in the loop's order (so its cached, compiled problem is
+        reused), within the arm pass's iteration cap and the loop's ``max_iterations``."""
+        loop = self.loop
+        frame = Frame(loop)
+        for b in sorted((b for b in loop.behaviors if b.enabled and b.name in ARM_BEHAVIORS),
+                        key=lambda b: b.order):
+            b.update(frame)
+        goals = frame.head + [g for side in SIDES for g in frame.arms[side]]
+        if not goals:
+            return
+        ps, head = loop.passes["arm"], loop.passes["head"]
+        solve(loop.problem_for(goals, "limbs"), max_iterations=min(ps.iterations, loop.max_iterations),
+              tol_position=ps.tol_position, tol_angle=min(ps.tol_angle, head.tol_angle))
+
+    def idle(self, until: float) -> FrameReport | None:
+        """Use the time before ``until`` (``time.perf_counter`` s: when the next sample is due) for
+        what split frames left out: the pelvis servo on the latest targets and a full loop step
+        (every behavior and pass), time-boxed to end by ``until``. None (nothing run) unless a
+        split frame is owed its step and at least ``idle_min_ms`` are left."""
+        if not self._owed or until - time.perf_counter() < self.config.idle_min_ms * 1e-3:
+            return None
+        self._drive_pelvis(self._targets)
+        report = self.loop.step(deadline=until)
+        self._owed = 0
+        self.idle_steps += 1
+        return report
 
     def _site(self, part: str) -> np.ndarray:
         """World 4x4 of ``part``'s site, from the loop's cached forward kinematics (one forward
