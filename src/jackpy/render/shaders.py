@@ -68,6 +68,35 @@ void main() {
 }
 """
 
+RIGID_VERTEX = """
+#version 330 core
+// Merged rigid items (jackpy.render.rigid): each vertex's item places it. u_bones holds six RGBA32F
+// texels per item (row = item): the model matrix's four columns, the colour, then (pick id, highlight).
+uniform mat4 u_view;
+uniform mat4 u_proj;
+uniform sampler2D u_bones;
+in vec3 in_position;
+in vec3 in_normal;
+in int in_owner;
+out vec3 v_position;
+out vec3 v_normal;
+out vec4 v_color;
+out float v_highlight;
+flat out int v_pick;
+void main() {
+    mat4 m = mat4(texelFetch(u_bones, ivec2(0, in_owner), 0), texelFetch(u_bones, ivec2(1, in_owner), 0),
+                  texelFetch(u_bones, ivec2(2, in_owner), 0), texelFetch(u_bones, ivec2(3, in_owner), 0));
+    vec4 p = u_view * (m * vec4(in_position, 1.0));
+    v_position = p.xyz;
+    v_normal = mat3(u_view) * (mat3(m) * in_normal);  // rigid: the rotation maps normals
+    v_color = texelFetch(u_bones, ivec2(4, in_owner), 0);
+    vec4 extra = texelFetch(u_bones, ivec2(5, in_owner), 0);
+    v_highlight = extra.y;
+    v_pick = int(extra.x + 0.5);
+    gl_Position = u_proj * p;
+}
+"""
+
 MESH_FRAGMENT = """
 #version 330 core
 uniform vec3 u_key_direction;   // towards the key light, view space, unit
