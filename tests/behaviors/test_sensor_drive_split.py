@@ -82,14 +82,18 @@ def test_idle_runs_the_owed_loop_step_only_with_time_left(reach):
     assert drive.idle(time.perf_counter() + 60.0) is None  # nothing owed yet
     r = drive.step(frames[60], live=False)
     assert r.loop is None and drive.split_frames == 1
+    assert drive.idle(time.perf_counter() + 60.0) is None  # one split frame: idle_every=2 not reached
+    drive.step(frames[61], live=False)
     assert drive.idle(time.perf_counter() - 1.0) is None and drive.idle_steps == 0  # no time left
     report = drive.idle(time.perf_counter() + 60.0)
     assert report is not None and not report.timed_out and drive.idle_steps == 1
     assert drive.idle(time.perf_counter() + 60.0) is None  # owed nothing again
-    r = drive.step(frames[61], live=False)
-    assert r.loop is None  # the idle step counts as the loop's step: the next frames split again
-    with pytest.raises(DeviceError, match="body_every"):
-        split_drive(reach, body_every=0)
+    for k in (62, 63, 64):  # the idle step counts as the loop's: three split frames again, then a full one
+        assert drive.step(frames[k], live=False).loop is None
+    assert drive.step(frames[65], live=False).loop is not None and drive.split_frames == 5
+    for knob in ("body_every", "idle_every"):
+        with pytest.raises(DeviceError, match=knob):
+            split_drive(reach, **{knob: 0})
 
 
 def test_live_split_reach_through_simulator_and_driver(reach, final):

@@ -25,9 +25,10 @@ frame at a time, in the book's order:
 **Split frames** (``DriveConfig.split``, live driving): a sample's frame solves only what the
 sensors drive at their rate: the spine (2., by forward kinematics) and the arms (3., the loop's
 own arm/head pass with its cached problem, the body frozen). The pelvis servo and the loop's full
-step (4.: every behavior and pass) run in :meth:`SensorDrive.idle`, in the time before the next
-sample is due, time-boxed to end by then; when no idle time comes, every ``body_every``-th sample
-frame is a full one, and so is every frame while a step is under way. [proposal]
+step (4.: every behavior and pass) run in :meth:`SensorDrive.idle` after every ``idle_every``
+split frames, in the time before the next sample is due, time-boxed to end by then; when no idle
+time comes, every ``body_every``-th sample frame is a full one, and so is every frame while a step
+is under way. [proposal]
 
 Samples are read without blocking (the driver's latest-value store); a frame with no new sample
 still steps the loop (a step in progress goes on). Smoothing (one-euro, per part) is off by
@@ -81,7 +82,8 @@ class DriveConfig:
     driving, CPU ms; :class:`FrameBudget`): the loop's solver iterations are cut while frames run
     over the budget and given back while they run well under it (None: the loop's own settings);
     ``split``: sample frames solve the spine and arms only, the rest runs in :meth:`SensorDrive.idle`
-    (module docstring), or in every ``body_every``-th frame when no idle step came;
+    after every ``idle_every`` of them (module docstring), or in every ``body_every``-th frame when
+    no idle step came;
     ``idle_min_ms``: an idle step starts only with at least this much time (ms) left before the
     next sample."""
 
@@ -99,6 +101,7 @@ class DriveConfig:
     place_transmitter: bool = True
     frame_budget_ms: float | None = None
     split: bool = False
+    idle_every: int = 2
     body_every: int = 4
     idle_min_ms: float = 3.0
 
@@ -206,12 +209,15 @@ class SensorDrive:
         self._spine_offset = np.zeros(3)  # last frame's command minus target: the warm start
         self.budget = (FrameBudget(loop, self.config.frame_budget_ms)
                        if self.config.frame_budget_ms is not None else None)
-        if self.config.body_every < 1:
-            raise DeviceError(f"body_every must be >= 1, not {self.config.body_every}")
+        for knob in ("idle_every", "body_every"):
+            if getattr(self.config, knob) < 1:
+                raise DeviceError(f"{knob} must be >= 1, not {getattr(self.config, knob)}")
         self._targets: dict[str, np.ndarray] = {}
         self._owed = 0  # split frames since the loop last stepped (its behaviors and body pass)
         self.split_frames = 0  # frames that solved the spine and arms only
         self.idle_steps = 0  # loop steps run by idle()
+        self._idle_overhead_s = 0.0  # learned: a loop step's cost besides its solves (s)
+        self._idle_late_s = 0.0  # learned: how much earlier than asked an idle step's box must end (s)
 
     # ----- calibration ----------------------------------------------------------------------------
     def reference_poses(self) -> dict[str, np.ndarray]:
@@ -320,8 +326,11 @@ class SensorDrive:
             self._owed += 1
             self.split_frames += 1
         else:
+            t_loop = time.perf_counter()
             report = loop.step()
             self._owed = 0
+            if cfg.split:  # what a loop step costs besides its solves: can an idle step fit
+                self._idle_overhead_s = _learn(self._idle_overhead_s, time.perf_counter() - t_loop - report.solve_s)
         self.frames += 1
         solved = time.perf_counter()
         if self.budget is not None:  # the work of this thread, not the time others took the CPU
@@ -373,7 +382,8 @@ class SensorDrive:
     def _solve_arms(self) -> None:
         """The loop's head-and-arms pass on this frame's goals, body frozen: the goals of the
         behaviors that feed only that pass, in the loop's order (so its cached, compiled problem is
-        reused), within the arm pass's iteration cap and the loop's ``max_iterations``."""
+        reused), within the arm pass's iteration cap and the loop's ``max_iterations`` (counted
+        work, no time box: a late frame must still move the hands)."""
         loop = self.loop
         frame = Frame(loop)
         for b in sorted((b for b in loop.behaviors if b.enabled and b.name in ARM_BEHAVIORS),
@@ -389,12 +399,21 @@ class SensorDrive:
     def idle(self, until: float) -> FrameReport | None:
         """Use the time before ``until`` (``time.perf_counter`` s: when the next sample is due) for
         what split frames left out: the pelvis servo on the latest targets and a full loop step
-        (every behavior and pass), time-boxed to end by ``until``. None (nothing run) unless a
-        split frame is owed its step and at least ``idle_min_ms`` are left."""
-        if not self._owed or until - time.perf_counter() < self.config.idle_min_ms * 1e-3:
+        (every behavior and pass), time-boxed to end by ``until``. None (nothing run) unless
+        ``idle_every`` split frames are owed it and the time left is at least ``idle_min_ms`` and
+        what the last loop steps cost besides their solves (their behaviors). The loop's time box
+        bounds only the solves, so the box it is given ends early by how late the last idle steps
+        ended (both learned, quick to rise, slow to fall)."""
+        start = time.perf_counter()
+        left = until - start
+        if self._owed < self.config.idle_every \
+                or left < max(self.config.idle_min_ms * 1e-3, self._idle_overhead_s):
             return None
         self._drive_pelvis(self._targets)
-        report = self.loop.step(deadline=until)
+        report = self.loop.step(deadline=until - self._idle_late_s)
+        end = time.perf_counter()
+        self._idle_overhead_s = _learn(self._idle_overhead_s, end - start - report.solve_s)
+        self._idle_late_s = _learn(self._idle_late_s, self._idle_late_s + end - until)
         self._owed = 0
         self.idle_steps += 1
         return report
@@ -499,6 +518,12 @@ class FrameBudget:
         elif frame_ms < 0.6 * self.budget_ms:
             self.cap = min(self.full_iterations, self.cap + 1)
         self.loop.max_iterations = self.cap
+
+
+def _learn(estimate: float, sample: float) -> float:
+    """A cost estimate (s, >= 0): half way to a higher sample, a tenth of the way to a lower one."""
+    w = 0.5 if sample > estimate else 0.1
+    return max(0.0, estimate + w * (sample - estimate))
 
 
 def replay_into(drive: SensorDrive, recording: Recording, speed: float = 0.0, every: int = 1,
