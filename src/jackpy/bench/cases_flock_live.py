@@ -8,9 +8,14 @@ Latency per frame = end of the solve - host arrival time of the newest sample us
 
 A 60 Hz display shows the newest solved pose at each refresh: a display frame is *skipped* when
 no solve finished during its 16.7 ms. The row is the drive with bounded work per frame
-(``frame_budget_ms``, :class:`~jackpy.behaviors.sensor_drive.FrameBudget`); the baseline is the
-same drive with the loop's full settings, run in the same process on the same simulator and
-driver, in alternating segments (so both see the same machine load).
+(``frame_budget_ms``, :class:`~jackpy.behaviors.sensor_drive.FrameBudget`) and split frames (a
+sample's frame solves the spine and arms; the pelvis, balance, stepping and legs run in
+:meth:`~jackpy.behaviors.sensor_drive.SensorDrive.idle` before the next sample is due); the
+baseline is the same drive with the loop's full settings, every frame a full loop step, run in
+the same process on the same simulator and driver, in alternating segments (so both see the same
+machine load). Each segment plays the whole reach from its start, so both drives solve the same
+motion. Palm error: the farther palm's distance from its sensor target after each frame's solve
+(median and p90); pelvis error: the pelvis site's (median).
 """
 
 from __future__ import annotations
@@ -24,8 +29,11 @@ from jackpy.bench.runner import Case, Result
 
 REACH = Path(__file__).resolve().parents[3] / "examples" / "flock" / "reach.jsonl"
 BUDGET_MS = 7.0
+RATE_HZ = 100.0
 DISPLAY_HZ = 60.0
-WARMUP_S = 0.25  # of each segment: the first frames catch up with the reach after a switch
+WARMUP_S = 0.25  # of each segment: the first frames catch up with the reach's start after a switch
+IDLE_MARGIN_S = 0.001  # an idle step ends this long before the next sample is due
+SPLIT = True  # the bounded drive's split frames (DriveConfig.split)
 
 
 def _reach_recording():
@@ -43,6 +51,7 @@ class _Tally:
         self.latency: list[float] = []
         self.step: list[float] = []
         self.palm: list[float] = []
+        self.pelvis: list[float] = []
         self.coalesced = 0
         self.display_frames = 0
         self.display_skipped = 0
@@ -59,18 +68,19 @@ class _Tally:
         self.seconds += end - start
 
 
-def _drive_segment(drive, drv, motion, seconds: float, tally: _Tally) -> None:
+def _drive_segment(drive, drv, motion, tally: _Tally) -> None:
+    """Drive the whole reach once, from its start."""
+    motion.play()
     start = time.perf_counter()
     measure_from = start + WARMUP_S
-    end = start + seconds
     solved: list[float] = []
     last_bird = max(mt.bird for mt in drive.config.sensors.mounts)
-    while time.perf_counter() < end:
-        if motion.done:
-            motion.play()  # loop the reach
+    while not motion.done:
         if drv.store.wait(last_bird, after_seq=drive.consumed.get(last_bird, -1), timeout=0.2) is None:
             continue
         r = drive.step()
+        if drive.config.split and r.arrival is not None:
+            drive.idle(r.arrival + 1.0 / RATE_HZ - IDLE_MARGIN_S)
         if r.solved < measure_from or r.latency_ms is None:
             continue
         solved.append(r.solved)
@@ -81,10 +91,12 @@ def _drive_segment(drive, drv, motion, seconds: float, tally: _Tally) -> None:
         palms = [e for p, e in r.errors.items() if p.endswith("palm")]
         if palms:
             tally.palm.append(max(palms) * 1e3)
-    tally.segment(solved, measure_from, end)
+        if "pelvis" in r.errors:
+            tally.pelvis.append(r.errors["pelvis"] * 1e3)
+    tally.segment(solved, measure_from, time.perf_counter())
 
 
-def _run(seconds: float) -> tuple[_Tally, _Tally, dict]:
+def _run(rounds: int) -> tuple[_Tally, _Tally, dict]:
     from jackpy.behaviors import BehaviorLoop
     from jackpy.behaviors.anatomy import human_anatomy
     from jackpy.behaviors.sensor_drive import DriveConfig, SensorDrive
@@ -98,8 +110,8 @@ def _run(seconds: float) -> tuple[_Tally, _Tally, dict]:
     sensors = sensor_config_from_dict(rec.header["sensors"])
     motion = FrameMotion(rec)
     tallies = {"bounded": _Tally(), "full": _Tally()}
-    with FlockSimulator(4, motion=motion, rate=100.0, autoconfig_delay=0.05) as sim:
-        drv = FlockDriver(sim.paths[0], 4, measurement_rate=100.0, rts_reset=None, autoconfig_wait=0.08)
+    with FlockSimulator(4, motion=motion, rate=RATE_HZ, autoconfig_delay=0.05) as sim:
+        drv = FlockDriver(sim.paths[0], 4, measurement_rate=RATE_HZ, rts_reset=None, autoconfig_wait=0.08)
         drv.start()
         try:
             for b in range(1, 5):
@@ -108,23 +120,23 @@ def _run(seconds: float) -> tuple[_Tally, _Tally, dict]:
             for name, budget in (("bounded", BUDGET_MS), ("full", None)):
                 fig = make_human("male", 50)
                 drives[name] = SensorDrive(BehaviorLoop(fig, human_anatomy(fig)), drv,
-                                           DriveConfig(sensors=sensors, frame_budget_ms=budget))
+                                           DriveConfig(sensors=sensors, frame_budget_ms=budget,
+                                                       split=SPLIT and budget is not None))
                 drives[name].calibrate()
-            motion.play()
-            for _ in range(2):  # alternating segments: both drives see the same load
+            for _ in range(rounds):  # alternating segments: both drives see the same load
                 for name in ("full", "bounded"):
-                    _drive_segment(drives[name], drv, motion, seconds / 2, tallies[name])
+                    _drive_segment(drives[name], drv, motion, tallies[name])
             dropped = drv.stats.dropped
-            over = drives["bounded"].budget.over
-            cap = drives["bounded"].budget.cap
+            ours = drives["bounded"]
+            info = {"dropped": dropped, "over_budget": ours.budget.over, "cap": ours.budget.cap,
+                    "split_frames": ours.split_frames, "idle_steps": ours.idle_steps}
         finally:
             drv.stop()
-    return tallies["bounded"], tallies["full"], {"dropped": dropped, "over_budget": over, "cap": cap}
+    return tallies["bounded"], tallies["full"], info
 
 
 def _latency_ik_case(quick: bool) -> Result:
-    seconds = 3.0 if quick else 8.0
-    ours, full, info = _run(seconds)
+    ours, full, info = _run(2 if quick else 4)
 
     def figures(t: _Tally, tag: str) -> dict:
         lat = np.array(t.latency) if t.latency else np.array([np.nan])
@@ -134,7 +146,9 @@ def _latency_ik_case(quick: bool) -> Result:
                 f"{tag}skipped_display_frames": t.display_skipped,
                 f"{tag}display_frames": t.display_frames,
                 f"{tag}coalesced_samples": t.coalesced,
-                f"{tag}palm_error_mm": float(np.median(t.palm)) if t.palm else float("nan")}
+                f"{tag}palm_error_mm": float(np.median(t.palm)) if t.palm else float("nan"),
+                f"{tag}palm_error_p90_mm": float(np.percentile(t.palm, 90)) if t.palm else float("nan"),
+                f"{tag}pelvis_error_mm": float(np.median(t.pelvis)) if t.pelvis else float("nan")}
 
     lat = np.array(ours.latency)
     base = float(np.median(full.latency)) if full.latency else None
