@@ -92,6 +92,11 @@ def bounded_step(J: np.ndarray, lam: float, c: np.ndarray, lower: np.ndarray, up
                                  np.ascontiguousarray(upper, dtype=float), h, max_iterations, tol)
         if not rows_on or np.all(A @ box[0] <= r + ROW_TOL):
             return box
+        h = np.zeros(n, dtype=bool) if held is None else np.array(held, dtype=bool)
+        return _row_step_compiled(np.ascontiguousarray(J, dtype=float), float(lam),
+                                  np.ascontiguousarray(c, dtype=float), np.ascontiguousarray(lower, dtype=float),
+                                  np.ascontiguousarray(upper, dtype=float), A.astype(float, order="C"),
+                                  np.ascontiguousarray(r, dtype=float), h, max_iterations, tol)
     H = _Hessian(J, lam)
     fixed = upper - lower <= AT_BOUND
     at_lo, at_hi = lower >= -AT_BOUND, upper <= AT_BOUND
@@ -282,11 +287,167 @@ def _box_step(J, lam, c, lower, upper, held, max_iterations, tol):  # pragma: no
     return d, held, it
 
 
+def _solve_free(Jf, L, lam, V):  # pragma: no cover - compiled
+    """``H_ff^-1 V`` for a vector ``V`` on the free variables, ``L L^T = lambda I + J_f J_f^T``."""
+    m = L.shape[0]
+    y = Jf @ V
+    for i in range(m):  # forward, then back substitution
+        v = y[i]
+        for k in range(i):
+            v -= L[i, k] * y[k]
+        y[i] = v / L[i, i]
+    for i in range(m - 1, -1, -1):
+        v = y[i]
+        for k in range(i + 1, m):
+            v -= L[k, i] * y[k]
+        y[i] = v / L[i, i]
+    return (V - Jf.T @ y) / lam
+
+
+def _row_step(J, lam, c, lower, upper, A, r, held, max_iterations, tol):  # pragma: no cover - compiled
+    """:func:`bounded_step` with rows, the numpy reference's iterations as one loop (compiled by
+    numba): the working rows as an ordered index list, the same tests and tolerances."""
+    m, n = J.shape
+    nr = A.shape[0]
+    d = np.zeros(n)
+    fixed = upper - lower <= AT_BOUND
+    for i in range(n):
+        at_bound = lower[i] >= -AT_BOUND or upper[i] <= AT_BOUND
+        held[i] = fixed[i] or (lower[i] >= -AT_BOUND and c[i] > 0) or (upper[i] <= AT_BOUND and c[i] < 0) \
+            or (held[i] and at_bound)
+    work = np.zeros(nr, dtype=np.int64)
+    nw = 0
+    eps = tol * max(np.max(np.abs(c)), 1e-300)
+    on_face = False
+    it = 0
+    while it < max_iterations:
+        it += 1
+        Jd = J @ d
+        grad = J.T @ Jd + lam * d + c
+        q0 = c @ d + 0.5 * (Jd @ Jd + lam * (d @ d))
+        free = np.nonzero(~held)[0]
+        nf = free.size
+        s = np.zeros(n)
+        nu = np.zeros(nw)
+        if nf and not on_face:
+            Jf = np.ascontiguousarray(J[:, free])
+            K = Jf @ Jf.T
+            for k in range(m):
+                K[k, k] += lam
+            L = np.linalg.cholesky(K)
+            sf = -_solve_free(Jf, L, lam, np.ascontiguousarray(grad[free]))
+            if nw:
+                Aw = np.empty((nw, nf))
+                for a in range(nw):
+                    for k in range(nf):
+                        Aw[a, k] = A[work[a], free[k]]
+                HA = np.empty((nf, nw))
+                for a in range(nw):
+                    HA[:, a] = _solve_free(Jf, L, lam, np.ascontiguousarray(Aw[a]))
+                nu = np.linalg.lstsq(Aw @ HA, Aw @ sf, 1e-12)[0]
+                sf = sf - HA @ nu
+                sf = sf - np.ascontiguousarray(Aw.T) @ np.linalg.lstsq(Aw @ np.ascontiguousarray(Aw.T), Aw @ sf, 1e-12)[0]
+            for k in range(nf):
+                s[free[k]] = sf[k]
+        decrease = -(grad @ s)
+        if on_face or decrease <= 1e-15 * (1.0 + abs(q0)) or np.max(np.abs(s)) <= 1e-15:
+            on_face = False
+            eff = grad.copy()
+            for a in range(nw):
+                eff += nu[a] * A[work[a]]
+            wrong = False
+            for i in range(n):
+                if held[i] and not fixed[i]:
+                    at_lo = d[i] <= lower[i] + AT_BOUND
+                    if (at_lo and eff[i] < -eps) or (not at_lo and eff[i] > eps):
+                        held[i] = False
+                        wrong = True
+            if wrong:
+                continue
+            if nw:
+                k = int(np.argmin(nu))
+                if nu[k] < -eps:
+                    for a in range(k, nw - 1):
+                        work[a] = work[a + 1]
+                    nw -= 1
+                    continue
+            break
+        if nw == 0:  # gradient projection: bind (and keep free) many bounds in one step
+            alpha = 1.0
+            accepted = False
+            for _ in range(20):
+                trial = np.minimum(np.maximum(d + alpha * s, lower), upper)
+                At = A @ trial
+                inside = True
+                for j in range(nr):
+                    if At[j] > r[j] + ROW_TOL:
+                        inside = False
+                        break
+                if inside:
+                    Jt = J @ trial
+                    qt = c @ trial + 0.5 * (Jt @ Jt + lam * (trial @ trial))
+                    if qt <= q0 + SIGMA * (grad @ (trial - d)):
+                        hit = False
+                        for i in range(n):
+                            if (trial[i] <= lower[i] + AT_BOUND and s[i] < 0) or \
+                                    (trial[i] >= upper[i] - AT_BOUND and s[i] > 0):
+                                held[i] = True
+                                hit = True
+                        on_face = alpha == 1.0 and not hit
+                        d = trial
+                        accepted = True
+                        break
+                alpha *= 0.5
+            if accepted:
+                continue
+        # one constraint at a time: the largest feasible step along s, the blocking bound or row joins
+        step, var, row = 1.0, -1, -1
+        for i in range(n):
+            if s[i] > 0:
+                ratio = (upper[i] - d[i]) / s[i]
+            elif s[i] < 0:
+                ratio = (lower[i] - d[i]) / s[i]
+            else:
+                continue
+            if ratio < step:
+                step, var = ratio, i
+        step = max(step, 0.0)
+        As = A @ s
+        Ad = A @ d
+        for j in range(nr):
+            working = False
+            for a in range(nw):
+                if work[a] == j:
+                    working = True
+            if working or As[j] <= 1e-15:
+                continue
+            ratio = max(r[j] - Ad[j], 0.0) / As[j]
+            if ratio < step:
+                step, row = ratio, j
+        d = np.minimum(np.maximum(d + step * s, lower), upper)
+        if row >= 0:
+            work[nw] = row
+            nw += 1
+        elif var >= 0:
+            held[var] = True
+            d[var] = upper[var] if s[var] > 0 else lower[var]
+    Ad = A @ d  # rounding along the working rows: shrink toward the feasible start d = 0
+    shrink = 1.0
+    for j in range(nr):
+        if Ad[j] > r[j] + ROW_TOL:
+            shrink = min(shrink, r[j] / Ad[j])
+    if shrink < 1.0:
+        d = d * shrink
+    return d, held, it
+
+
 try:
     if os.environ.get("JACKPY_NO_JIT"):
         raise ImportError("disabled by JACKPY_NO_JIT")
     import numba
 
     _box_step_compiled = numba.njit(cache=True, nogil=True)(_box_step)
+    _solve_free = numba.njit(cache=True, nogil=True)(_solve_free)
+    _row_step_compiled = numba.njit(cache=True, nogil=True)(_row_step)
 except ImportError:  # pragma: no cover - numba is optional
-    _box_step_compiled = None
+    _box_step_compiled = _row_step_compiled = None
