@@ -52,6 +52,10 @@ from jackpy.ik.result import ACHIEVED, ITERATION_LIMIT, TIME_LIMIT
 RESTORE_TOL = 1e-12
 #: ... and this far relative to it (an unreachable higher level held at its compromise)
 RESTORE_REL = 1e-6
+#: with the bounded step each held level may rise this far (absolute; 10 micrometres of residual,
+#: a tenth of the default ``tol_position``) above its held value (plus ``RESTORE_REL``): most trial
+#: steps then need no restoration evaluation (at ``RESTORE_TOL`` nearly every one did)
+HOLD_TOL = 1e-10
 #: restoration evaluations one iteration of a lower level may spend over all its line-search trials
 RESTORE_EVALUATIONS = 12
 #: ... with the bounded step (:meth:`Manifold.minimise`)
@@ -60,7 +64,7 @@ BOUNDED_RESTORE_EVALUATIONS = 6
 LINE_TRIALS = 4
 #: a level ends as stationary when its potential fell by less than ``STALL_REL`` of itself over the
 #: last ``STALL_ITERATIONS`` iterations (it creeps along the held levels' curved manifold)
-STALL_REL, STALL_ITERATIONS = 1e-4, 5
+STALL_REL, STALL_ITERATIONS = 1e-3, 5
 #: weight of the higher levels' linearised residual ``Jh d`` in the tangent step's model
 HOLD_WEIGHT = 300.0
 #: Armijo constant of the line search on the lower level
@@ -131,7 +135,7 @@ class Manifold:
         """Whether ``ev`` keeps every held level within its bound (the sum's without ``per_level``)."""
         if not self.per_level:
             return self.potential(ev) <= self.bound()
-        return all(ev.potential(k) <= v + RESTORE_TOL + RESTORE_REL * v for k, v in self.per_level.items())
+        return all(ev.potential(k) <= v + HOLD_TOL + RESTORE_REL * v for k, v in self.per_level.items())
 
     def potential(self, ev: Evaluation) -> float:
         Fh, _ = self.stacked(ev)
