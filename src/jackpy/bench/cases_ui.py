@@ -15,7 +15,9 @@ The App runs with its frame budget (:mod:`jackpy.ui.frame_budget`, the workbench
 full quality and the document's 30 ms box, the frame loop before the budget), on a second App and
 renderer in the same EGL context, in alternating blocks of frames so that both see the same load.
 ``fps`` is 1000 / the median frame; ``overruns`` counts frames whose solve took more than 1.2 times
-its box; ``levels`` how many frames ran on each rung of the quality ladder.
+its box, ``worst_overrun`` is the largest solve / box ratio (the promise: at most 1.2);
+``solved`` the fraction of frames that solved (the last rung solves every other frame);
+``levels`` how many frames ran on each rung of the quality ladder.
 """
 
 from __future__ import annotations
@@ -74,6 +76,8 @@ class _Drag:
         self.draw: list[float] = []
         self.levels: dict[int, int] = {}
         self.overruns = 0
+        self.ratios: list[float] = []
+        self.solved = 0
 
     def frame(self, record: bool = True) -> None:
         self.k = (self.k + 1) % len(self.path)
@@ -92,6 +96,9 @@ class _Drag:
         self.draw.append(ms - stats.solve_s * 1e3)
         self.levels[stats.level] = self.levels.get(stats.level, 0) + 1
         self.overruns += stats.solved and stats.solve_s > OVERRUN * stats.box_s
+        if stats.solved and stats.box_s > 0:
+            self.solved += 1
+            self.ratios.append(stats.solve_s / stats.box_s)
 
     def figures(self, tag: str) -> dict:
         f = np.array(self.frame_ms)
@@ -99,7 +106,8 @@ class _Drag:
                 f"{tag}fps": 1e3 / float(np.median(f)), f"{tag}solve_ms": float(np.median(self.solve)),
                 f"{tag}solve_p90_ms": float(np.percentile(self.solve, 90)),
                 f"{tag}draw_ms": float(np.median(self.draw)), f"{tag}overruns": int(self.overruns),
-                f"{tag}frames": len(f)}
+                f"{tag}worst_overrun": round(max(self.ratios, default=0.0), 3),
+                f"{tag}solved": round(self.solved / max(1, len(f)), 2), f"{tag}frames": len(f)}
 
     def release(self) -> None:
         self.screen.release()

@@ -58,7 +58,8 @@ _BUTTON_NAMES = {MOUSE_LEFT: "left", MOUSE_MIDDLE: "middle", MOUSE_RIGHT: "right
 @dataclass
 class FrameStats:
     """Timings of one frame (s), the solve's time box (s) and whether it solved, and the frame
-    budget's rung (:mod:`jackpy.ui.frame_budget`)."""
+    budget's rung (:mod:`jackpy.ui.frame_budget`; on the last rung every other frame of a drag
+    draws without solving)."""
 
     solve_s: float = 0.0
     draw_s: float = 0.0
@@ -544,11 +545,14 @@ class App:
                 self.driving = False
                 self.info(f"error: sensor drive stopped: {exc}")
             stats.solve_s = time.perf_counter() - t0
-            stats.box_s, stats.solved = self.frame_budget.box_s, True
+            stats.box_s, stats.solved = plan.box_s, True
             self.doc.dirty = True
             self.doc.analyses.refresh(self.env)
         else:
             was = self.doc.needs_solve
+            skip = not plan.solve and self.manipulator.active  # a drag's frame between solves: draw only
+            if skip:
+                self.doc.needs_solve = False
             s = self.doc.step(dt, plan.limits)
             stats.solve_s, stats.iterations = s.solve_s, s.iterations
             stats.box_s, stats.solved, stats.timed_out = s.box_s, s.solved, s.timed_out

@@ -11,7 +11,9 @@ passes by the deadline), so the frame rate follows.
 When even the smallest box does not fit, or frames stay over the target, the budget steps down the
 quality :data:`LADDER` one rung at a time (fewer solver iterations per pass, fewer COM passes, a
 smaller 3-D view drawn while things move, at 1/2 with the skins' coarse level of detail: see
-``Renderer.coarse_skin_scale``); after ``RECOVER_FRAMES`` frames well under the target
+``Renderer.coarse_skin_scale``; on the last rung the behaviors and IK run on every other frame
+of a drag only, the frames between draw what moved, the dragged goal; once the button is up every
+frame solves again, so the figure settles as fast as on the rung above); after ``RECOVER_FRAMES`` frames well under the target
 it steps back up. A still frame is always drawn at full size and anti-aliased by the renderer.
 
 The window switches the budget on (:class:`~jackpy.ui.window.Window`); an App without a window
@@ -31,12 +33,14 @@ from jackpy.document.document import SolveLimits
 @dataclass(frozen=True)
 class Quality:
     """One rung: caps on every behavior pass's solver iterations and on the COM loop's passes
-    (None: the loops' own), and the 3-D view's draw scale (fraction of each side) while moving."""
+    (None: the loops' own), the 3-D view's draw scale (fraction of each side) while moving, and
+    every how many frames the behaviors and IK run (1: every frame)."""
 
     name: str
     iterations: int | None
     passes: int | None
     render_scale: float
+    solve_every: int = 1
 
 
 LADDER: tuple[Quality, ...] = (
@@ -44,10 +48,13 @@ LADDER: tuple[Quality, ...] = (
     Quality("2 passes, 3/4 view", 10, 2, 0.75),
     Quality("8 iterations, 1/2 view", 8, 2, 0.5),
     Quality("1 pass, 8 iterations, 1/2 view", 8, 1, 0.5),
+    Quality("1 pass, 8 iterations, 1/2 view, IK every 2nd frame", 8, 1, 0.5, 2),
 )
 """From the full quality down: each rung is cheaper in the solve and in the draw. No rung caps the
 solver below 8 iterations a pass: at 5 the figure drifted away from a released hand's goal (the hand
-18 cm off after 30 frames in the window's drag test, against 6 mm at 8)."""
+18 cm off after 30 frames in the window's drag test, against 6 mm at 8). The last rung halves the
+behaviors' and IK's rate instead: on llvmpipe a frame's draw alone costs ~20 ms, so a solve on
+every frame leaves no 30 frames/s under load."""
 
 OVERRUN = 1.2
 """A solve taking longer than this times its box breaks the promise (counted in ``overruns``)."""
@@ -63,11 +70,14 @@ RECOVER_FRACTION = 0.6
 @dataclass(frozen=True)
 class FramePlan:
     """What one frame may do: the solve's ``limits`` (None: the document's own box, counting
-    whole behavior frames, as without a frame budget) and the 3-D view's ``render_scale``."""
+    whole behavior frames, as without a frame budget), the 3-D view's ``render_scale``,
+    ``solve``: whether the frame may solve at all, and ``box_s``: the solve's box (s)."""
 
     limits: SolveLimits | None
     render_scale: float
     level: int
+    solve: bool = True
+    box_s: float = 0.0
 
 
 class FrameBudget:
@@ -88,6 +98,10 @@ class FrameBudget:
         so the IK keeps half the box."""
         self.box_s = 0.0
         """The box of the last plan (s)."""
+        self.worst_overrun = 0.0
+        """The largest solve / box ratio seen (the promise: at most ``OVERRUN``)."""
+        self._unsolved = max(q.solve_every for q in LADDER)
+        """Planned frames since the last one that might solve (the first one may)."""
         self.overruns = 0
         """Frames whose solve ran past ``OVERRUN`` times its box."""
         self.solves = 0
@@ -108,11 +122,14 @@ class FrameBudget:
         """The next frame's plan, given the document's own time box (s)."""
         if not self.adaptive:
             self.box_s = document_box_s
-            return FramePlan(None, 1.0, 0)
+            return FramePlan(None, 1.0, 0, True, document_box_s)
         q = self.quality
         fits = self.target_s - self.other_s - HEADROOM_S
         self.box_s = min(document_box_s, max(self.min_box_s, 2.0 * self.behaviors_s, fits))
-        return FramePlan(SolveLimits(self.box_s, q.iterations, q.passes), q.render_scale, self.level)
+        solve = self._unsolved + 1 >= q.solve_every  # one frame in solve_every may solve
+        self._unsolved = 0 if solve else self._unsolved + 1
+        return FramePlan(SolveLimits(self.box_s, q.iterations, q.passes), q.render_scale, self.level, solve,
+                         self.box_s)
 
     def record(self, period_s: float, solve_s: float, box_s: float, solved: bool, drawn: bool = True,
                behaviors_s: float = 0.0) -> None:
@@ -126,6 +143,8 @@ class FrameBudget:
             self.behaviors_s += w * (behaviors_s - self.behaviors_s)
             if solve_s > OVERRUN * box_s:
                 self.overruns += 1
+            if box_s > 0.0:
+                self.worst_overrun = max(self.worst_overrun, solve_s / box_s)
         if not (solved or drawn):
             self._calm += 1  # an idle frame: nothing was slow
             self._recover()
