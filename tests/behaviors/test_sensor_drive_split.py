@@ -91,6 +91,10 @@ def test_idle_runs_the_owed_loop_step_only_with_time_left(reach):
     for k in (62, 63, 64):  # the idle step counts as the loop's: three split frames again, then a full one
         assert drive.step(frames[k], live=False).loop is None
     assert drive.step(frames[65], live=False).loop is not None and drive.split_frames == 5
+    for k in (66, 67, 68):  # body_every - 1 split frames owed: the idle step runs without time left
+        drive.step(frames[k], live=False)
+    assert drive.idle(time.perf_counter() - 1.0) is not None and drive.idle_steps == 2
+    assert drive.step(frames[69], live=False).loop is None
     for knob in ("body_every", "idle_every"):
         with pytest.raises(DeviceError, match=knob):
             split_drive(reach, **{knob: 0})

@@ -26,9 +26,10 @@ frame at a time, in the book's order:
 sensors drive at their rate: the spine (2., by forward kinematics) and the arms (3., the loop's
 own arm/head pass with its cached problem, the body frozen). The pelvis servo and the loop's full
 step (4.: every behavior and pass) run in :meth:`SensorDrive.idle` after every ``idle_every``
-split frames, in the time before the next sample is due, time-boxed to end by then; when no idle
-time comes, every ``body_every``-th sample frame is a full one, and so is every frame while a step
-is under way. [proposal]
+split frames, in the time before the next sample is due, time-boxed to end by then, and after
+``body_every - 1`` of them whatever the time left; when ``idle`` is not called, every
+``body_every``-th sample frame is a full one, and so is every frame while a step is under way.
+[proposal]
 
 Samples are read without blocking (the driver's latest-value store); a frame with no new sample
 still steps the loop (a step in progress goes on). Smoothing (one-euro, per part) is off by
@@ -84,8 +85,8 @@ class DriveConfig:
     ``split``: sample frames solve the spine and arms only, the rest runs in :meth:`SensorDrive.idle`
     after every ``idle_every`` of them (module docstring), or in every ``body_every``-th frame when
     no idle step came;
-    ``idle_min_ms``: an idle step starts only with at least this much time (ms) left before the
-    next sample."""
+    ``idle_min_ms``: an idle step starts only with this much time (ms) for its solves left
+    before the next sample, besides its behaviors' learned cost."""
 
     sensors: SensorConfig = field(default_factory=default_config)
     smoothing: bool = False
@@ -217,7 +218,7 @@ class SensorDrive:
         self.split_frames = 0  # frames that solved the spine and arms only
         self.idle_steps = 0  # loop steps run by idle()
         self._idle_overhead_s = 0.0  # learned: a loop step's cost besides its solves (s)
-        self._idle_late_s = 0.0  # learned: how much earlier than asked an idle step's box must end (s)
+        self._idle_late_s = 0.0  # learned: how far an idle step runs past its loop deadline (s)
 
     # ----- calibration ----------------------------------------------------------------------------
     def reference_poses(self) -> dict[str, np.ndarray]:
@@ -400,20 +401,27 @@ class SensorDrive:
         """Use the time before ``until`` (``time.perf_counter`` s: when the next sample is due) for
         what split frames left out: the pelvis servo on the latest targets and a full loop step
         (every behavior and pass), time-boxed to end by ``until``. None (nothing run) unless
-        ``idle_every`` split frames are owed it and the time left is at least ``idle_min_ms`` and
-        what the last loop steps cost besides their solves (their behaviors). The loop's time box
-        bounds only the solves, so the box it is given ends early by how late the last idle steps
-        ended (both learned, quick to rise, slow to fall)."""
+        ``idle_every`` split frames are owed it and the time left is at least what the last loop
+        steps cost besides their solves (their behaviors) plus ``idle_min_ms`` for the solves. The
+        loop's time box bounds only the solves, so the box it is given ends early by how far the
+        last idle steps ran past theirs (both learned, quick to rise, slow to fall). Once
+        ``body_every - 1`` split frames are owed it, the step runs whatever the time left, with
+        that much time: the body's work then delays the next sample's frame a little, rather than
+        the next frame being a full one."""
+        cfg = self.config
         start = time.perf_counter()
-        left = until - start
-        if self._owed < self.config.idle_every \
-                or left < max(self.config.idle_min_ms * 1e-3, self._idle_overhead_s):
+        need = self._idle_overhead_s + cfg.idle_min_ms * 1e-3
+        forced = self._owed >= cfg.body_every - 1
+        if self._owed < cfg.idle_every and not forced:
+            return None
+        if not forced and until - start < need:
             return None
         self._drive_pelvis(self._targets)
-        report = self.loop.step(deadline=until - self._idle_late_s)
+        deadline = start + max(until - self._idle_late_s - start, need)
+        report = self.loop.step(deadline=deadline)
         end = time.perf_counter()
         self._idle_overhead_s = _learn(self._idle_overhead_s, end - start - report.solve_s)
-        self._idle_late_s = _learn(self._idle_late_s, self._idle_late_s + end - until)
+        self._idle_late_s = _learn(self._idle_late_s, end - deadline)
         self._owed = 0
         self.idle_steps += 1
         return report
