@@ -550,8 +550,7 @@ class App:
             self.doc.analyses.refresh(self.env)
         else:
             was = self.doc.needs_solve
-            skip = not plan.solve and self.manipulator.active  # a drag's frame between solves: draw only
-            if skip:
+            if not plan.solve and self.manipulator.active:  # a drag's frame between solves: draw only
                 self.doc.needs_solve = False
             s = self.doc.step(dt, plan.limits)
             stats.solve_s, stats.iterations = s.solve_s, s.iterations
