@@ -26,7 +26,7 @@ moves with the box-bounded Gauss-Newton step of :mod:`.bounded_step`, at bounded
   press against (at the bound, their gradient pointing out) are frozen: freeing one would worsen
   them to first order.
 - **Restoration over the box.** A trial whose higher levels rose above their held value (plus
-  ``RESTORE_TOL`` absolute and ``RESTORE_REL`` relative) is pulled back by bounded Gauss-Newton steps
+  ``HOLD_TOL`` absolute and ``RESTORE_REL`` relative) is pulled back by bounded Gauss-Newton steps
   on ``Fh`` alone; only restored trials are judged (Armijo on level ``k``) and accepted, so every
   accepted iterate is feasible and never worse for the higher levels.
 - **Bounded work.** One iteration spends at most ``LINE_TRIALS`` trial evaluations and

@@ -74,9 +74,10 @@ def solve(problem: Problem, *, max_iterations: int = 100, tol_position: float = 
 
     ``tol_position`` metres and ``tol_angle`` degrees decide when a goal is achieved; ``tol_step``
     (scaled radians) is the KKT step tolerance; ``max_iterations`` caps the work (an interactive
-    frame budget; the posture reached is still feasible and better). ``time_budget_s`` is a promise:
-    no evaluation starts after it has passed, and the solve returns its best feasible iterate with
-    status ``"time_limit"``. With ``analytic`` a problem that is exactly one 6-D goal on a 7-DOF arm
+    frame budget; the posture reached is still feasible and better). ``time_budget_s`` is a promise,
+    counted from this call: no evaluation starts after it has passed, and the solve returns its best
+    feasible iterate with status ``"time_limit"``; the cyclic garbage collector waits until the
+    boxed solve has returned. With ``analytic`` a problem that is exactly one 6-D goal on a 7-DOF arm
     chain starts from the closed-form solution (see :mod:`.arm7`). ``step``: ``"bounded"`` (default)
     solves a one-level problem by bounded Gauss-Newton steps (many limits per step,
     :mod:`.bounded_step`); problems with priority levels, and ``step="bfgs"``, use the book's
@@ -406,7 +407,7 @@ class _Run:
             if self.expired():
                 return ev, self.stop_status()
             lam = max((GN_DAMPING_FLOOR + GN_DAMPING * math.sqrt(G)) * boost * self.damping,
-                      CONDITION * float(np.sum(J * J)))  # the QP's m x m factor stays positive definite
+                      CONDITION * float(np.vdot(J, J)))  # the QP's m x m factor stays positive definite
             c = J.T @ F
             d, held, _ = bounded_step(J, lam, c, self.lo - z, self.hi - z, self.A if rows else None,
                                       self.b - self.A @ z if rows else None, held=held)
