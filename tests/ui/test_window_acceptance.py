@@ -67,10 +67,13 @@ def test_drag_hand_undo_save_reopen(window, tmp_path):
         window.cursor_pos_callback(h, *window.view_to_window(p0 + t * (p1 - p0)))
         window.frame()
     window.mouse_button_callback(h, MOUSE_LEFT, RELEASE, 0)
-    for _ in range(30):
+    # until the posture settles: a few frames on an idle machine; on a loaded one the frame budget
+    # cuts the solves short and the figure takes more frames (under load 3-4 on 2 cores, 55-131)
+    for _ in range(300):
         window.frame()
         if not app.needs_solve:
             break
+    assert not app.needs_solve
 
     assert np.linalg.norm(site_world(fig, hand)[:3, 3] - target) < 0.01
     for f, w in zip(feet, feet0):

@@ -22,7 +22,12 @@ every goal of the body pass stays reachable, and as each frame moves them only a
 pass starts each frame nearly solved (a hand goal in the body pass made it run to its iteration
 cap every frame, 50-120 ms). The tilt is held while the goal is within reach and returns to
 upright at the same rate once the goal is well inside the arm's reach (``lean_release``) or the
-hand no longer leans.
+hand no longer leans. [decision] The lean advances only while the body keeps up with it: while the
+COM is within ``LEAN_FOLLOW`` of the balance point (standing; seated there is no COM goal). After a whole solve it always is (the COM loop
+holds it to ``com_tolerance``); when the time box cuts the body pass short (a loaded machine, the
+workbench's cheaper rungs), the lean waits for the body instead of running ahead of it. Without
+that wait, cut frames moved the balance point a centimetre a frame to the edge of the feet, the
+figure took a balance step and the released hand ended 10-30 cm off its goal.
 """
 
 from __future__ import annotations
@@ -44,6 +49,8 @@ UP = np.array([0.0, 1.0, 0.0])
 REGIONS = ("down", "forward", "side", "across")
 #: how far inside the support polygon's edge (m) a lean leaves the balance point
 LEAN_INSIDE = 0.005
+#: the lean advances only while the COM is this close (m, on the floor) to the balance point
+LEAN_FOLLOW = 0.01
 
 
 @dataclass
@@ -195,8 +202,16 @@ class Hands(BehaviorBase):
         shoulder = frame.site(*frame.anatomy.hands[side].shoulder)[:3, 3]
         return bool(np.linalg.norm(point - shoulder) > 0.97 * frame.loop.arm_length(side))
 
+    @staticmethod
+    def _body_keeps_up(frame: "Frame") -> bool:
+        """Whether the solved posture's COM is within ``LEAN_FOLLOW`` of this frame's COM goal (the
+        balance point); True without one (seated: the pelvis carries the figure)."""
+        goal = frame.com_goal
+        return goal is None or float(np.linalg.norm(floor(frame.com) - floor(goal))) <= LEAN_FOLLOW
+
     def _update_lean(self, frame: "Frame") -> None:
-        """Move the lean a step towards the leaning hands' goals, hold it, or let it go upright."""
+        """Move the lean a step towards the leaning hands' goals (while the body keeps up with it),
+        hold it, or let it go upright."""
         st, a, p = frame.state, frame.anatomy, self.params
         want, hold = np.zeros(2), False
         for side, hs in st.hands.items():
@@ -212,6 +227,8 @@ class Hands(BehaviorBase):
             elif reach > p.lean_release:
                 hold = True
         n = float(np.linalg.norm(want))
+        if n > 1e-9 and not self._body_keeps_up(frame):
+            return
         if n > 1e-9:
             target = p.lean_max * want / n
         elif hold:
@@ -234,7 +251,8 @@ class Hands(BehaviorBase):
             if hs.goal is None or not hs.lean or st.com_drag is not None:
                 continue
             miss = hs.goal[:3, 3] - palm[:3, 3]
-            if np.linalg.norm(miss) > 0.01 and self._beyond_reach(frame, side, hs.goal[:3, 3]):
+            if (np.linalg.norm(miss) > 0.01 and self._beyond_reach(frame, side, hs.goal[:3, 3])
+                    and self._body_keeps_up(frame)):
                 d = floor(miss)
                 bf = frame.balance_frame()
                 if np.linalg.norm(d) > 1e-6:

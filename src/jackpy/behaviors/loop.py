@@ -20,7 +20,9 @@ together at least half the box, however long the behaviors' updates took),
 less a margin the loop learns from its own frames (how far a solve has run past the budget it was
 given, and what the frame costs after the solve); once the deadline has passed no further COM pass
 starts (the report says ``timed_out``). The first pass of each part always runs, so a drag always
-moves something; the solves warm-start, so work cut from one frame goes on in the next.
+moves something, and the limbs pass always gets at least ``LIMB_FLOOR_ITERATIONS`` (counted, not
+timed) even when the body pass has spent the box; the solves warm-start, so work cut from one frame
+goes on in the next.
 
 **User goals** (:meth:`BehaviorLoop.add_user_goal`): constraints the user adds on any site (an
 elbow kept out of a box, a head aim, a site on a plane) join the passes every frame, below the
@@ -58,6 +60,11 @@ from jackpy.peabody.model import Figure
 CONTACT_HEIGHT = 0.004
 #: distance (m) of the aim point of a direction goal
 FAR = 1.0e3
+#: a limbs or arm pass left less than this (s) of the frame's box runs this many iterations
+#: instead, unboxed (the solver's evaluation cap bounds them: a few arm evaluations, ~1-3 ms): cut
+#: frames otherwise starved the arm after a drag, the miss that stayed read as a reach beyond the
+#: arm, the figure leaned and stepped, and the released hand ended 10-30 cm off its goal
+LIMB_FLOOR_S, LIMB_FLOOR_ITERATIONS = 0.001, 1
 
 def reusable_attributes(cls: type) -> tuple[str, ...] | None:
     """The attributes that carry a frame's targets of a goal type whose compiled form the loop
@@ -157,6 +164,12 @@ class Frame:
     def _refresh(self) -> None:
         self.fk, self.com = self.loop.posture()
         self._balance: BalanceFrame | None = None
+
+    @property
+    def cut(self) -> bool:
+        """Whether the time box has cut this frame's solves short (read in ``finish``): the posture
+        is on its way to the goals, not where the solves would have settled."""
+        return self.loop._timed_out
 
     # ----- reading the posture -----------------------------------------------------------------
     def site(self, seg: str, site: str) -> np.ndarray:
@@ -604,8 +617,13 @@ class BehaviorLoop:
         if held is not None:
             return held
         budget = self._budget(share)
+        iterations = min(ps.iterations, self.max_iterations)
+        if budget is not None and kind != "body" and budget < LIMB_FLOOR_S:
+            # [decision] the limbs (the hand being dragged) always move: with the box spent by the
+            # body pass they get LIMB_FLOOR_ITERATIONS counted iterations, not a box of nothing
+            budget, iterations = None, min(iterations, LIMB_FLOOR_ITERATIONS)
         t0 = time.perf_counter()
-        result = solve(problem, max_iterations=min(ps.iterations, self.max_iterations), tol_position=tol,
+        result = solve(problem, max_iterations=iterations, tol_position=tol,
                        tol_angle=tol_angle, time_budget_s=budget)
         if budget is not None:
             self._overrun_s = _learn(self._overrun_s, time.perf_counter() - t0 - budget)

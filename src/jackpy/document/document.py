@@ -41,6 +41,8 @@ if TYPE_CHECKING:
 
 SETTLED_DQ = 1e-6
 """A behavior frame that moves no DOF more than this (rad or m) ends the solve."""
+CUT_FRAME_SHARE = 0.25
+"""What a behavior frame cut short by the time box counts towards ``settings.settle_frames``."""
 LOOK_DISTANCE = 1.0
 """A head drag fixates the point this far (m) ahead of the dragged view frame."""
 ITERATIONS_PER_CALL = 15
@@ -470,7 +472,9 @@ class Document:
                 self._timed_out |= self.last_report.timed_out
                 self._behaviors_s += self._frame_s - self.last_report.solve_s
                 count += 1
-                self._settle += 1
+                # a frame the time box cut did a fraction of a frame's work: the posture is still on
+                # its way (the lean waits for the body), so it counts CUT_FRAME_SHARE of a frame
+                self._settle += CUT_FRAME_SHARE if self.last_report.timed_out else 1.0
                 moved = float(np.max(np.abs(fig.q - q0), initial=0.0))
                 if self._settle >= self.settings.settle_frames:
                     break

@@ -30,4 +30,5 @@ class Settings:
     feet_hold: bool = True
     """Planted feet hold their full orientation (Jack's "hold"); off: they may pivot about the ball."""
     settle_frames: int = 60
-    """Behavior frames after a release before the solve stops even if the posture still creeps."""
+    """Behavior frames after a release before the solve stops even if the posture still creeps (a
+    frame the time box cut short counts ``document.CUT_FRAME_SHARE``, a quarter)."""
