@@ -8,6 +8,7 @@ import gc
 from collections import Counter
 
 import numpy as np
+import pytest
 
 from jackpy import ik
 from jackpy.ik import priorities, solver
@@ -185,3 +186,27 @@ def test_a_time_boxed_solve_pauses_the_cyclic_collector(monkeypatch) -> None:
     fig.q = start
     ik.solve(p)
     assert seen and all(seen)
+
+
+def test_solve_dispatches_priority_levels_to_the_bounded_step_unless_asked_for_the_books(monkeypatch) -> None:
+    fig, p = next(iter(_problems(1, seed=7)))
+    start = fig.q
+    calls = []
+    real = priorities.minimise_levels
+
+    def spy(*a, **kw):
+        calls.append(1)
+        return real(*a, **kw)
+
+    monkeypatch.setattr(solver, "minimise_levels", spy)
+    bounded = ik.solve(p, max_iterations=30)
+    assert calls and len({p.level_of(g) for g in p.goals}) > 1
+    after_bounded = fig.q
+    fig.q = start
+    calls.clear()
+    book = ik.solve(p, max_iterations=30, priorities="book")
+    assert not calls  # the book's projected BFGS with restoration
+    assert bounded.evaluations <= 2 + solver.EVALUATIONS_PER_ITERATION * 30
+    assert np.all(np.isfinite(after_bounded)) and np.all(np.isfinite(fig.q)) and book.iterations >= 0
+    with pytest.raises(ValueError, match="priorities"):
+        ik.solve(p, priorities="fast")

@@ -65,6 +65,12 @@ FAR = 1.0e3
 #: frames otherwise starved the arm after a drag, the miss that stayed read as a reach beyond the
 #: arm, the figure leaned and stepped, and the released hand ended 10-30 cm off its goal
 LIMB_FLOOR_S, LIMB_FLOOR_ITERATIONS = 0.001, 1
+#: how the passes solve their priority levels (``ik.solve``'s ``priorities``): the book's projected
+#: BFGS with restoration. [decision] The bounded default meets the priority mix's cost targets, but
+#: under the passes' 8-15 iteration caps its per-frame progress differs: a pivot step declined (the
+#: free foot turned 49.5 deg where the book step leaves 42.1), a COM settling two frames late after
+#: a balance step, a frame with the COM 1.2 cm outside the contact region (docs/ik.md)
+PRIORITIES = "book"
 
 def reusable_attributes(cls: type) -> tuple[str, ...] | None:
     """The attributes that carry a frame's targets of a goal type whose compiled form the loop
@@ -624,7 +630,7 @@ class BehaviorLoop:
             budget, iterations = None, min(iterations, LIMB_FLOOR_ITERATIONS)
         t0 = time.perf_counter()
         result = solve(problem, max_iterations=iterations, tol_position=tol,
-                       tol_angle=tol_angle, time_budget_s=budget)
+                       tol_angle=tol_angle, time_budget_s=budget, priorities=PRIORITIES)
         if budget is not None:
             self._overrun_s = _learn(self._overrun_s, time.perf_counter() - t0 - budget)
             self._timed_out |= result.status == TIME_LIMIT

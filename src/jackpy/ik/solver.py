@@ -34,7 +34,7 @@ import numpy as np
 
 from jackpy.errors import FigureError
 from jackpy.ik.bounded_step import bounded_step
-from jackpy.ik.priorities import CONDITION, RESTORE_EVALUATIONS, Manifold
+from jackpy.ik.priorities import CONDITION, RESTORE_EVALUATIONS, Manifold, minimise_levels
 from jackpy.ik.problem import Compiled, Evaluation, Problem
 from jackpy.ik.result import ACHIEVED, ITERATION_LIMIT, TIME_LIMIT, UNREACHABLE, GoalReport, Result
 
@@ -69,7 +69,8 @@ except (ImportError, AttributeError):  # pragma: no cover
 
 def solve(problem: Problem, *, max_iterations: int = 100, tol_position: float = 1e-4,
           tol_angle: float = 0.05, tol_step: float = 1e-10, analytic: bool = True,
-          apply: bool = True, time_budget_s: float | None = None, step: str = "bounded") -> Result:
+          apply: bool = True, time_budget_s: float | None = None, step: str = "bounded",
+          priorities: str = "bounded") -> Result:
     """Solve ``problem`` from the figure's current posture (a warm start).
 
     ``tol_position`` metres and ``tol_angle`` degrees decide when a goal is achieved; ``tol_step``
@@ -80,12 +81,19 @@ def solve(problem: Problem, *, max_iterations: int = 100, tol_position: float = 
     boxed solve has returned. With ``analytic`` a problem that is exactly one 6-D goal on a 7-DOF arm
     chain starts from the closed-form solution (see :mod:`.arm7`). ``step``: ``"bounded"`` (default)
     solves a one-level problem by bounded Gauss-Newton steps (many limits per step,
-    :mod:`.bounded_step`); problems with priority levels, and ``step="bfgs"``, use the book's
-    one-limit-at-a-time projected BFGS (with restoration onto the higher levels). With ``apply``
-    the result is written into the figure.
+    :mod:`.bounded_step`); ``step="bfgs"`` uses the book's one-limit-at-a-time projected BFGS.
+    ``priorities`` (with ``step="bounded"``), for problems with priority levels: ``"bounded"``
+    (default) solves them by bounded tangent steps with bounded restoration
+    (:func:`.priorities.minimise_levels`), ``"book"`` by the projected BFGS with restoration onto
+    the higher levels (the behavior loop's passes, see docs/ik.md). With ``apply`` the result is
+    written into the figure.
     """
     if step not in ("bounded", "bfgs"):
         raise ValueError(f"step must be 'bounded' or 'bfgs', not {step!r}")
+    if priorities not in ("bounded", "book"):
+        raise ValueError(f"priorities must be 'bounded' or 'book', not {priorities!r}")
+    if priorities == "book" and step == "bounded":
+        step = "bounded-book"  # one level bounded, priority levels by the book's step
     started = time.perf_counter()
     if time_budget_s is None or not gc.isenabled():
         return _solve(problem, started, max_iterations, tol_position, tol_angle, tol_step, analytic, apply,
@@ -117,6 +125,12 @@ def _solve(problem: Problem, started: float, max_iterations: int, tol_position: 
             ev = run.evaluate(z)
             if run.achieved(ev, comp.levels[-1]):
                 result = run.result(ev, ACHIEVED, 0, analytic=True)
+    if result is None and step == "bounded" and len(comp.levels) > 1:  # priorities="bounded"
+        ev, status = minimise_levels(run, run.evaluate(run.z), list(comp.levels), max_iterations)
+        if status not in (ITERATION_LIMIT, TIME_LIMIT):
+            status = ACHIEVED if run.achieved(ev, comp.levels[-1]) else UNREACHABLE
+        run.z = ev.z
+        result = run.result(ev, status, run.iterations, analytic=comp.arm is not None and analytic)
     if result is None:
         ev = run.evaluate(run.z)
         status = ACHIEVED
@@ -125,7 +139,7 @@ def _solve(problem: Problem, started: float, max_iterations: int, tol_position: 
             if i:
                 hi = comp.levels[:i]
                 manifold = Manifold(hi, float(sum(ev.potential(k) for k in hi)))
-            if step == "bounded" and len(comp.levels) == 1:
+            if step != "bfgs" and len(comp.levels) == 1:
                 ev, status = run.restarted(ev, level, max_iterations)
             else:
                 ev, status = run.minimise(ev, level, manifold, max_iterations - run.iterations)
