@@ -77,8 +77,8 @@ def solve(problem: Problem, *, max_iterations: int = 100, tol_position: float = 
     (scaled radians) is the KKT step tolerance; ``max_iterations`` caps the work (an interactive
     frame budget; the posture reached is still feasible and better). ``time_budget_s`` is a promise,
     counted from this call: no evaluation starts after it has passed, and the solve returns its best
-    feasible iterate with status ``"time_limit"``; the cyclic garbage collector waits until the
-    boxed solve has returned. With ``analytic`` a problem that is exactly one 6-D goal on a 7-DOF arm
+    feasible iterate with status ``"time_limit"``. The cyclic garbage collector waits until the
+    solve has returned. With ``analytic`` a problem that is exactly one 6-D goal on a 7-DOF arm
     chain starts from the closed-form solution (see :mod:`.arm7`). ``step``: ``"bounded"`` (default)
     solves a one-level problem by bounded Gauss-Newton steps (many limits per step,
     :mod:`.bounded_step`); ``step="bfgs"`` uses the book's one-limit-at-a-time projected BFGS.
@@ -95,12 +95,13 @@ def solve(problem: Problem, *, max_iterations: int = 100, tol_position: float = 
     if priorities == "book" and step == "bounded":
         step = "bounded-book"  # one level bounded, priority levels by the book's step
     started = time.perf_counter()
-    if time_budget_s is None or not gc.isenabled():
+    if not gc.isenabled():
         return _solve(problem, started, max_iterations, tol_position, tol_angle, tol_step, analytic, apply,
                       time_budget_s, step)
-    # the cyclic garbage collector waits until a time-boxed solve has returned: the solve's own
-    # garbage has no cycles and goes by reference counting, but a collection that falls inside it
-    # scans the whole process (a full one of the bench's process took 128 ms, six 20 ms boxes)
+    # the cyclic garbage collector waits until the solve has returned: the solve's own garbage has
+    # no cycles and goes by reference counting, but a collection that falls inside it scans the
+    # whole process (a full one of the bench's process took 128 ms, six 20 ms boxes; unboxed, one
+    # 8-evaluation priority solve of the mix took 174 ms)
     gc.disable()
     try:
         return _solve(problem, started, max_iterations, tol_position, tol_angle, tol_step, analytic, apply,
