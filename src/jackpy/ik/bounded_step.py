@@ -268,23 +268,29 @@ def _box_step(J, lam, c, lower, upper, held, max_iterations, tol):  # pragma: no
             alpha *= 0.5
         if accepted:
             continue
-        a, var = 1.0, -1
-        for i in range(n):
-            if s[i] > 0:
-                r = (upper[i] - d[i]) / s[i]
-            elif s[i] < 0:
-                r = (lower[i] - d[i]) / s[i]
-            else:
-                continue
-            if r < a:
-                a, var = r, i
-        a = max(a, 0.0)
+        a, var = _box_ratio(d, s, lower, upper)
         d = np.minimum(np.maximum(d + a * s, lower), upper)
         if var >= 0:
             held[var] = True
             factored = False
             d[var] = upper[var] if s[var] > 0 else lower[var]
     return d, held, it
+
+
+def _box_ratio(d, s, lower, upper):  # pragma: no cover - compiled
+    """(the largest step ``a`` in [0, 1] with ``d + a s`` inside ``[lower, upper]``, the variable
+    that blocks it or -1)."""
+    a, var = 1.0, -1
+    for i in range(d.shape[0]):
+        if s[i] > 0:
+            r = (upper[i] - d[i]) / s[i]
+        elif s[i] < 0:
+            r = (lower[i] - d[i]) / s[i]
+        else:
+            continue
+        if r < a:
+            a, var = r, i
+    return max(a, 0.0), var
 
 
 def _solve_free(Jf, L, lam, V):  # pragma: no cover - compiled
@@ -401,17 +407,8 @@ def _row_step(J, lam, c, lower, upper, A, r, held, max_iterations, tol):  # prag
             if accepted:
                 continue
         # one constraint at a time: the largest feasible step along s, the blocking bound or row joins
-        step, var, row = 1.0, -1, -1
-        for i in range(n):
-            if s[i] > 0:
-                ratio = (upper[i] - d[i]) / s[i]
-            elif s[i] < 0:
-                ratio = (lower[i] - d[i]) / s[i]
-            else:
-                continue
-            if ratio < step:
-                step, var = ratio, i
-        step = max(step, 0.0)
+        step, var = _box_ratio(d, s, lower, upper)
+        row = -1
         As = A @ s
         Ad = A @ d
         for j in range(nr):
@@ -447,6 +444,7 @@ try:
     import numba
 
     _box_step_compiled = numba.njit(cache=True, nogil=True)(_box_step)
+    _box_ratio = numba.njit(cache=True, nogil=True)(_box_ratio)
     _solve_free = numba.njit(cache=True, nogil=True)(_solve_free)
     _row_step_compiled = numba.njit(cache=True, nogil=True)(_row_step)
 except ImportError:  # pragma: no cover - numba is optional
