@@ -25,8 +25,10 @@ upright at the same rate once the goal is well inside the arm's reach (``lean_re
 hand no longer leans. [decision] The lean advances only while the body keeps up with it: while the
 COM is within ``LEAN_FOLLOW`` of the balance point (standing; seated there is no COM goal). After a whole solve it always is (the COM loop
 holds it to ``com_tolerance``); when the time box cuts the body pass short (a loaded machine, the
-workbench's cheaper rungs), the lean waits for the body instead of running ahead of it. Without
-that wait, cut frames moved the balance point a centimetre a frame to the edge of the feet, the
+workbench's cheaper rungs), the lean waits for the body instead of running ahead of it; and a miss
+after a cut frame is the solves' unfinished work until it stops shrinking (``LEAN_CONFIRM``
+frames without falling below ``LEAN_STALL`` of itself), only then a reach beyond the arm. Without
+these, cut frames moved the balance point a centimetre a frame to the edge of the feet, the
 figure took a balance step and the released hand ended 10-30 cm off its goal.
 """
 
@@ -51,6 +53,9 @@ REGIONS = ("down", "forward", "side", "across")
 LEAN_INSIDE = 0.005
 #: the lean advances only while the COM is this close (m, on the floor) to the balance point
 LEAN_FOLLOW = 0.01
+#: after frames the time box cut, a miss leans only once it has stayed at least ``LEAN_STALL`` of
+#: what it was ``LEAN_CONFIRM`` frames before (it stopped shrinking: a reach beyond the arm)
+LEAN_CONFIRM, LEAN_STALL = 5, 0.9
 
 
 @dataclass
@@ -116,6 +121,25 @@ class Hands(BehaviorBase):
         super().__init__(params or HandsParams(), enabled)
         #: the body's lean: floor vector, direction of the lean times its angle (rad)
         self.lean = np.zeros(2)
+        #: per hand: its misses (m) over the last cut frames, newest last (cleared by a whole solve)
+        self._misses: dict[str, list[float]] = {}
+        #: per hand: whether it leans this frame (decided once per frame by :meth:`_update_lean`)
+        self._leaning: dict[str, bool] = {}
+
+    def _far_miss(self, frame: "Frame", side: str, miss: float, reach: float) -> bool:
+        """Whether a palm ``miss`` (m) of a goal at ``reach`` (arm lengths from the shoulder) is a
+        reach beyond the arm: farther than 0.97, missed by over 1 cm and, after a frame the time box
+        cut, no longer shrinking (module docstring). Called once per hand and frame."""
+        if reach <= 0.97 or miss <= 0.01:
+            self._misses.pop(side, None)
+            return False
+        if not frame.cut:
+            self._misses.pop(side, None)
+            return True
+        seen = self._misses.setdefault(side, [])
+        seen.append(miss)
+        del seen[:-(LEAN_CONFIRM + 1)]
+        return len(seen) > LEAN_CONFIRM and miss >= LEAN_STALL * seen[0]
 
     def region(self, frame: "Frame", side: str, point: np.ndarray) -> str:
         """P4 region of a palm position (world) for hand ``side``."""
@@ -198,10 +222,6 @@ class Hands(BehaviorBase):
             elif name == "chest" and isinstance(g, Orientation):  # hold global orientation
                 frame.body[i] = (Orientation(g.site_name, chest_rot @ g.target, weight=g.weight, name="chest"), lv)
 
-    def _beyond_reach(self, frame: "Frame", side: str, point: np.ndarray) -> bool:
-        shoulder = frame.site(*frame.anatomy.hands[side].shoulder)[:3, 3]
-        return bool(np.linalg.norm(point - shoulder) > 0.97 * frame.loop.arm_length(side))
-
     @staticmethod
     def _body_keeps_up(frame: "Frame") -> bool:
         """Whether the solved posture's COM is within ``LEAN_FOLLOW`` of this frame's COM goal (the
@@ -214,13 +234,16 @@ class Hands(BehaviorBase):
         hold it, or let it go upright."""
         st, a, p = frame.state, frame.anatomy, self.params
         want, hold = np.zeros(2), False
+        self._leaning = {}
         for side, hs in st.hands.items():
             if hs.goal is None or not hs.lean:
+                self._misses.pop(side, None)
                 continue
             shoulder = frame.site(*a.hands[side].shoulder)[:3, 3]
             reach = float(np.linalg.norm(hs.goal[:3, 3] - shoulder)) / frame.loop.arm_length(side)
             palm = frame.site(*a.hands[side].palm)[:3, 3]
-            if reach > 0.97 and np.linalg.norm(hs.goal[:3, 3] - palm) > 0.01:
+            self._leaning[side] = self._far_miss(frame, side, float(np.linalg.norm(hs.goal[:3, 3] - palm)), reach)
+            if self._leaning[side]:
                 d = floor(hs.goal[:3, 3] - shoulder)
                 if np.linalg.norm(d) > 1e-6:
                     want += d / np.linalg.norm(d)
@@ -251,8 +274,7 @@ class Hands(BehaviorBase):
             if hs.goal is None or not hs.lean or st.com_drag is not None:
                 continue
             miss = hs.goal[:3, 3] - palm[:3, 3]
-            if (np.linalg.norm(miss) > 0.01 and self._beyond_reach(frame, side, hs.goal[:3, 3])
-                    and self._body_keeps_up(frame)):
+            if self._leaning.get(side) and self._body_keeps_up(frame):
                 d = floor(miss)
                 bf = frame.balance_frame()
                 if np.linalg.norm(d) > 1e-6:
