@@ -23,13 +23,14 @@ pass starts each frame nearly solved (a hand goal in the body pass made it run t
 cap every frame, 50-120 ms). The tilt is held while the goal is within reach and returns to
 upright at the same rate once the goal is well inside the arm's reach (``lean_release``) or the
 hand no longer leans. [decision] The lean advances only while the body keeps up with it: while the
-COM is within ``LEAN_FOLLOW`` of the balance point (standing; seated there is no COM goal). After a whole solve it always is (the COM loop
-holds it to ``com_tolerance``); when the time box cuts the body pass short (a loaded machine, the
-workbench's cheaper rungs), the lean waits for the body instead of running ahead of it; and a miss
-after a cut frame is the solves' unfinished work until it stops shrinking (``LEAN_CONFIRM``
-frames without falling below ``LEAN_STALL`` of itself), only then a reach beyond the arm. Without
-these, cut frames moved the balance point a centimetre a frame to the edge of the feet, the
-figure took a balance step and the released hand ended 10-30 cm off its goal.
+COM is within ``LEAN_FOLLOW`` of the balance point (standing; seated there is no COM goal). After a
+whole solve it always is (the COM loop holds it to ``com_tolerance``); when the time box cuts the
+body pass short (a loaded machine, the workbench's cheaper rungs), the lean waits for the body
+instead of running ahead of it; and a miss after a cut frame is the solves' unfinished work until it
+stops shrinking (``LEAN_CONFIRM`` frames without falling below ``LEAN_STALL`` of itself), only then
+a reach beyond the arm. Without these, cut frames moved the balance point a centimetre a frame to
+the edge of the feet, the figure took a balance step and the released hand ended 10-30 cm off its
+goal.
 """
 
 from __future__ import annotations

@@ -11,13 +11,14 @@ no solve finished during its 16.7 ms. The row is the drive with bounded work per
 (``frame_budget_ms``, :class:`~jackpy.behaviors.sensor_drive.FrameBudget`) and split frames (a
 sample's frame solves the spine and arms; the pelvis, balance, stepping and legs run in
 :meth:`~jackpy.behaviors.sensor_drive.SensorDrive.idle` before the next sample is due); the
-baseline is the same drive with the loop's full settings, every frame a full loop step, run in
-the same process on the same simulator and driver, in alternating segments (so both see the same
-machine load). Each segment plays the whole reach from its start, so both drives solve the same
-motion. The set-up's objects are frozen out of the cyclic garbage collector (``gc.freeze``) while
-the drives run, as a live session would after loading. Palm error: the farther palm's distance from its sensor target after each frame's solve
-(median and p90); pelvis error: the pelvis site's (median). ``cpu_ms_per_frame``: the driving
-thread's CPU time per sample frame, idle steps included (the work, whatever the load).
+baseline is the same drive with the loop's full settings, every frame a full loop step, run in the
+same process on the same simulator and driver, in alternating segments (so both see the same machine
+load). Each segment plays the whole reach from its start, so both drives solve the same motion. The
+set-up's objects are frozen out of the cyclic garbage collector (``gc.freeze``) while the drives
+run, as a live session would after loading. Palm error: the farther palm's distance from its sensor
+target after each frame's solve (median and p90); pelvis error: the pelvis site's (median).
+``cpu_ms_per_frame``: the driving thread's CPU time per sample frame, idle steps included (the work,
+whatever the load).
 """
 
 from __future__ import annotations

@@ -92,12 +92,10 @@ def solve(problem: Problem, *, max_iterations: int = 100, tol_position: float = 
         raise ValueError(f"step must be 'bounded' or 'bfgs', not {step!r}")
     if priorities not in ("bounded", "book"):
         raise ValueError(f"priorities must be 'bounded' or 'book', not {priorities!r}")
-    if priorities == "book" and step == "bounded":
-        step = "bounded-book"  # one level bounded, priority levels by the book's step
     started = time.perf_counter()
     if not gc.isenabled():
         return _solve(problem, started, max_iterations, tol_position, tol_angle, tol_step, analytic, apply,
-                      time_budget_s, step)
+                      time_budget_s, step, priorities)
     # the cyclic garbage collector waits until the solve has returned: the solve's own garbage has
     # no cycles and goes by reference counting, but a collection that falls inside it scans the
     # whole process (a full one of the bench's process took 128 ms, six 20 ms boxes; unboxed, one
@@ -105,13 +103,14 @@ def solve(problem: Problem, *, max_iterations: int = 100, tol_position: float = 
     gc.disable()
     try:
         return _solve(problem, started, max_iterations, tol_position, tol_angle, tol_step, analytic, apply,
-                      time_budget_s, step)
+                      time_budget_s, step, priorities)
     finally:
         gc.enable()
 
 
 def _solve(problem: Problem, started: float, max_iterations: int, tol_position: float, tol_angle: float,
-           tol_step: float, analytic: bool, apply: bool, time_budget_s: float | None, step: str) -> Result:
+           tol_step: float, analytic: bool, apply: bool, time_budget_s: float | None, step: str,
+           priorities: str) -> Result:
     """:func:`solve`, its time box counted from ``started`` (``perf_counter`` at its call)."""
     comp = problem.compile()
     run = _Run(comp, tol_position, tol_angle, tol_step)
@@ -126,7 +125,7 @@ def _solve(problem: Problem, started: float, max_iterations: int, tol_position: 
             ev = run.evaluate(z)
             if run.achieved(ev, comp.levels[-1]):
                 result = run.result(ev, ACHIEVED, 0, analytic=True)
-    if result is None and step == "bounded" and len(comp.levels) > 1:  # priorities="bounded"
+    if result is None and step == "bounded" and priorities == "bounded" and len(comp.levels) > 1:
         ev, status = minimise_levels(run, run.evaluate(run.z), list(comp.levels), max_iterations)
         if status not in (ITERATION_LIMIT, TIME_LIMIT):
             status = ACHIEVED if run.achieved(ev, comp.levels[-1]) else UNREACHABLE
@@ -140,7 +139,7 @@ def _solve(problem: Problem, started: float, max_iterations: int, tol_position: 
             if i:
                 hi = comp.levels[:i]
                 manifold = Manifold(hi, float(sum(ev.potential(k) for k in hi)))
-            if step != "bfgs" and len(comp.levels) == 1:
+            if step == "bounded" and len(comp.levels) == 1:
                 ev, status = run.restarted(ev, level, max_iterations)
             else:
                 ev, status = run.minimise(ev, level, manifold, max_iterations - run.iterations)

@@ -11,10 +11,11 @@ passes by the deadline), so the frame rate follows.
 When even the smallest box does not fit, or frames stay over the target, the budget steps down the
 quality :data:`LADDER` one rung at a time (fewer solver iterations per pass, fewer COM passes, a
 smaller 3-D view drawn while things move, at 1/2 with the skins' coarse level of detail: see
-``Renderer.coarse_skin_scale``; on the last rung the behaviors and IK run on every other frame
-of a drag only, the frames between draw what moved, the dragged goal; once the button is up every
-frame solves again, so the figure settles as fast as on the rung above); after ``RECOVER_FRAMES`` frames well under the target
-it steps back up. A still frame is always drawn at full size and anti-aliased by the renderer.
+``Renderer.coarse_skin_scale``; on the last rung the behaviors and IK run on every other frame of a
+drag only, the frames between draw what moved, the dragged goal; once the button is up every frame
+solves again, so the figure settles as fast as on the rung above); after ``RECOVER_FRAMES`` frames
+well under the target it steps back up. A still frame is always drawn at full size and anti-aliased
+by the renderer.
 
 The window switches the budget on (:class:`~jackpy.ui.window.Window`); an App without a window
 (scripts, tests) runs the frame loop as without one unless ``app.frame_budget.adaptive`` is set.
