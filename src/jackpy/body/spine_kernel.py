@@ -20,7 +20,7 @@ import math
 
 import numpy as np
 
-from jackpy.peabody.kinematics_jit import AVAILABLE, numba  # the one numba switch (JACKPY_NO_JIT)
+from jackpy.compiled import AVAILABLE, kernel  # the one numba switch (JACKPY_NO_JIT) and the kernels registry
 #: a joint overflows its goal only by more than rounding (radians): at the range's ends every joint
 #: lands on its limit and the derivative stays the inner one-sided derivative (the reference's strict
 #: test can clamp joints by an ulp there and give zero, which would pin an IK variable at its bound)
@@ -171,11 +171,11 @@ def _spine(theta, rest, lower, upper, dof_index, bottom, top, initiator, spread,
             jac[i, k, c] = der[i]
 
 
-if numba is not None:
-    _njit = numba.njit(cache=True, nogil=True)
-    _weights = _njit(_weights)
-    _distribute = _njit(_distribute)
-    _spine = _njit(_spine)
+if AVAILABLE:
+    _weights = kernel(_weights, None)
+    _distribute = kernel(_distribute, None)
+    _spine = kernel(_spine, "(f8[::1], f8[:, ::1], f8[:, ::1], f8[:, ::1], i8[::1], i8, i8, i8, f8, i8, f8, "
+                    "f8[:, ::1], f8[:, :, ::1])")
 
 
 def spine_distribution(theta: np.ndarray, rest: np.ndarray, lower: np.ndarray, upper: np.ndarray,

@@ -29,7 +29,11 @@ def run(args: argparse.Namespace) -> int:
         cases = [c for c in cases if any(c.name.startswith(o) for o in args.only)]
         if not cases:
             raise JackpyError(f"no benchmark case matches {', '.join(args.only)}")
+    from jackpy import compiled
+
+    warmed = compiled.warm(compiled.announce_on_stderr)  # no case times a kernel's compilation or loading
     if not args.json:
+        print(f"# numba kernels: {warmed}", flush=True)
         print(header(), flush=True)
     for case in cases:
         result = case.run(args.quick)

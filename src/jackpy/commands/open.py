@@ -20,10 +20,12 @@ def register(sub: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     from pathlib import Path
 
+    from jackpy import compiled
     from jackpy.ui import session
     from jackpy.ui.app import App
     from jackpy.ui.window import Window
 
+    compiled.warm(compiled.announce_on_stderr)  # before any frame: no solve compiles or loads a kernel
     env, base = session.default_scene()
     app = App(env)
     app.scene_dir = base

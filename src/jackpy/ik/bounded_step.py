@@ -18,9 +18,9 @@ that row joins the working set, and a row whose multiplier turns negative leaves
 
 from __future__ import annotations
 
-import os
-
 import numpy as np
+
+from jackpy.compiled import AVAILABLE, kernel
 
 try:  # numpy.linalg.inv's own kernel, without its per-call checks (the matrix is positive definite)
     from numpy.linalg import _umath_linalg
@@ -438,14 +438,11 @@ def _row_step(J, lam, c, lower, upper, A, r, held, max_iterations, tol):  # prag
     return d, held, it
 
 
-try:
-    if os.environ.get("JACKPY_NO_JIT"):
-        raise ImportError("disabled by JACKPY_NO_JIT")
-    import numba
-
-    _box_step_compiled = numba.njit(cache=True, nogil=True)(_box_step)
-    _box_ratio = numba.njit(cache=True, nogil=True)(_box_ratio)
-    _solve_free = numba.njit(cache=True, nogil=True)(_solve_free)
-    _row_step_compiled = numba.njit(cache=True, nogil=True)(_row_step)
-except ImportError:  # pragma: no cover - numba is optional
+if AVAILABLE:
+    _box_step_compiled = kernel(_box_step, "(f8[:, ::1], f8, f8[::1], f8[::1], f8[::1], b1[::1], i8, f8)")
+    _box_ratio = kernel(_box_ratio, None)  # also the numpy reference's ratio test: compiled when it first runs
+    _solve_free = kernel(_solve_free, None)
+    _row_step_compiled = kernel(_row_step, "(f8[:, ::1], f8, f8[::1], f8[::1], f8[::1], f8[:, ::1], f8[::1], b1[::1], "
+                                "i8, f8)")
+else:  # pragma: no cover - numba is optional
     _box_step_compiled = _row_step_compiled = None

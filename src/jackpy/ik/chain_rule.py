@@ -11,9 +11,7 @@ evaluation in numpy's per-call overhead, the loop ~2 us.
 
 from __future__ import annotations
 
-import numpy as np
-
-from jackpy.peabody.kinematics_jit import numba  # the one numba switch (JACKPY_NO_JIT)
+from jackpy.compiled import kernel  # the one numba switch (JACKPY_NO_JIT) and the kernels registry
 
 
 def _to_z(Jc, nf, free_scale, blocks, stack, out):  # pragma: no cover - compiled
@@ -33,4 +31,4 @@ def _to_z(Jc, nf, free_scale, blocks, stack, out):  # pragma: no cover - compile
                 out[i, lo_c + j] = s
 
 
-to_z = numba.njit(cache=True, nogil=True)(_to_z) if numba is not None else None
+to_z = kernel(_to_z, "(f8[:, ::1], i8, f8[::1], i8[:, ::1], f8[:, ::1], f8[:, ::1])")

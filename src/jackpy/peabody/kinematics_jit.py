@@ -6,23 +6,15 @@ the segment's joint in traversal order its world axis and point (the frame befor
 going down, after it going up) and ``M = M @ S``, finally ``W(s) = M @ Q(s)``. numpy's per-call
 overhead dominates the batched form on figures of ~100 segments; the loop has none.
 
-``JACKPY_NO_JIT=1`` in the environment turns the kernel off (the numpy path is then used).
+``JACKPY_NO_JIT=1`` in the environment turns the kernel off (the numpy path is then used); the
+switch and the kernels' registry are :mod:`jackpy.compiled`.
 """
 
 from __future__ import annotations
 
-import os
-
 import numpy as np
 
-try:
-    if os.environ.get("JACKPY_NO_JIT"):
-        raise ImportError("disabled by JACKPY_NO_JIT")
-    import numba
-except ImportError:  # pragma: no cover - numba is optional
-    numba = None
-
-AVAILABLE = numba is not None
+from jackpy.compiled import AVAILABLE, kernel, numba  # noqa: F401 - numba: the one switch, re-exported
 
 
 def _forward(q, location, root_inv, parent, P, Q, seg_start, seg_count, slot_dof, slot_rot, slot_axis,
@@ -93,4 +85,4 @@ def _forward(q, location, root_inv, parent, P, Q, seg_start, seg_count, slot_dof
                 W[s, i, j] = acc
 
 
-forward_kernel = numba.njit(cache=True, nogil=True)(_forward) if AVAILABLE else None
+forward_kernel = kernel(_forward, "(f8[::1], f8[:, ::1], f8[:, ::1], i8[::1], f8[:, :, ::1], f8[:, :, ::1], i8[::1], i8[::1], i8[::1], b1[::1], f8[:, ::1], b1[::1], f8[:, ::1], f8[:, :, ::1], f8[:, ::1], f8[:, ::1])")

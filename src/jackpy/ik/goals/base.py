@@ -25,7 +25,7 @@ from typing import TYPE_CHECKING, Any, ClassVar
 import numpy as np
 
 from jackpy.errors import FigureError
-from jackpy.peabody.kinematics_jit import numba  # the one numba switch (JACKPY_NO_JIT)
+from jackpy.compiled import kernel  # the one numba switch (JACKPY_NO_JIT) and the kernels registry
 
 if TYPE_CHECKING:
     from jackpy.peabody.kinematics import FKResult, Kinematics
@@ -64,7 +64,7 @@ def _site_rows(mom, ang, moved, vectors, weights, point, out):  # pragma: no cov
             out[3 * j, c], out[3 * j + 1, c], out[3 * j + 2, c] = m * r0, m * r1, m * r2
 
 
-_site_rows_compiled = numba.njit(cache=True, nogil=True)(_site_rows) if numba is not None else None
+_site_rows_compiled = kernel(_site_rows, "(f8[:, ::1], f8[:, ::1], f8[::1], f8[:, ::1], f8[::1], b1, f8[:, ::1])")
 from jackpy.ik.goals.kernels import com_rows as _com_rows_compiled  # noqa: E402
 from jackpy.ik.goals.kernels import twist as _twist_compiled  # noqa: E402
 

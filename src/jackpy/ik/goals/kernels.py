@@ -15,7 +15,7 @@ import math
 
 import numpy as np
 
-from jackpy.peabody.kinematics_jit import numba  # the one numba switch (JACKPY_NO_JIT)
+from jackpy.compiled import kernel, numba  # the one numba switch (JACKPY_NO_JIT)
 
 
 def _twist(axes, origins, cols, sign, trans, mom, ang):  # pragma: no cover - compiled
@@ -145,11 +145,12 @@ def _com_rows(moved, mc, mass_moved, total, mom, ang, J):  # pragma: no cover - 
 
 
 if numba is not None:
-    _jit = numba.njit(cache=True, nogil=True)
-    _site, _rows, _angle = _jit(_site), _jit(_rows), _jit(_angle)
-    twist = _jit(_twist)
-    frame_goal = _jit(_frame_goal)
-    aim_goal = _jit(_aim_goal)
-    com_rows = _jit(_com_rows)
+    _site, _rows, _angle = kernel(_site, None), kernel(_rows, None), kernel(_angle, None)
+    twist = kernel(_twist, "(f8[:, ::1], f8[:, ::1], i8[::1], f8[::1], b1[::1], f8[:, ::1], f8[:, ::1])")
+    frame_goal = kernel(_frame_goal, "(f8[:, ::1], f8[:, ::1], f8[:, ::1], f8, f8, f8, f8, f8, f8[:, ::1], "
+                        "f8[:, ::1], f8[::1], f8[::1], f8[:, ::1])")
+    aim_goal = kernel(_aim_goal, "(f8[:, ::1], f8[:, ::1], f8[::1], f8[::1], f8, f8[:, ::1], f8[:, ::1], f8[::1], "
+                      "f8[::1], f8[:, ::1])")
+    com_rows = kernel(_com_rows, "(f8[:, ::1], f8[:, ::1], f8[::1], f8, f8[:, ::1], f8[:, ::1], f8[:, ::1])")
 else:  # pragma: no cover - numba is optional
     twist = frame_goal = aim_goal = com_rows = None
