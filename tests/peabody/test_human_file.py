@@ -100,3 +100,21 @@ def test_a_marker_without_the_human_groups_is_refused() -> None:
         restore_human(fig)
     again = parse_figures(figures_to_text([fig]), "again.fig")[0]
     assert again.human == fig.human
+
+
+def test_the_human_marker_is_compared_within_tolerance() -> None:
+    """The marker's numbers agree within ``tol`` like every other number (a rounding difference in
+    the generated mass is no difference); its names, and a real change, are differences."""
+    import copy
+    import dataclasses
+
+    a = peabody_copy(make_human("female", 5), "female_p5_psurf")
+    b = copy.deepcopy(a)
+    b.human = dataclasses.replace(a.human, mass=a.human.mass * (1 + 1e-15))
+    assert figure_differences(a, b, tol=1e-7) == []
+    b.human = dataclasses.replace(a.human, mass=a.human.mass + 0.5)
+    assert figure_differences(a, b, tol=1e-7) == [f"human mass: {a.human.mass} != {a.human.mass + 0.5}"]
+    b.human = dataclasses.replace(a.human, sex="male")
+    assert len(figure_differences(a, b, tol=1e-7)) == 1
+    b.human = dataclasses.replace(a.human, dims={**a.human.dims, "thigh.length": a.human.dims["thigh.length"] + 0.01})
+    assert figure_differences(a, b, tol=1e-7)[0].startswith("human dims")

@@ -78,5 +78,16 @@ def figure_differences(a: Figure, b: Figure, tol: float = 1e-9,
                 close(f"{w} driver {attr}", getattr(ga.driver, attr), getattr(gb.driver, attr))
         elif ka is not None and ka == kb:
             same(f"{w} driver parameters", ga.driver.to_dict(), gb.driver.to_dict())  # type: ignore[attr-defined]
-    same("human", a.human, b.human)
+    ha, hb = a.human, b.human
+    same("human", ha is None, hb is None)
+    if ha is not None and hb is not None:  # the marker's names exactly, its numbers within tol
+        same("human", (ha.population, ha.sex), (hb.population, hb.sex))
+        close("human percentile", ha.percentile, hb.percentile)
+        for attr in ("mass", "eye_drop"):
+            close(f"human {attr}", getattr(ha, attr), getattr(hb, attr))
+        for attr in ("dims", "overrides"):
+            da, db = getattr(ha, attr), getattr(hb, attr)
+            same(f"human {attr}", sorted(da), sorted(db))
+            if sorted(da) == sorted(db):
+                close(f"human {attr}", [da[k] for k in sorted(da)], [db[k] for k in sorted(db)])
     return out
