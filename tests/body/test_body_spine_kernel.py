@@ -39,7 +39,9 @@ def test_kernel_matches_reference(weights: SpineWeights | None) -> None:
 
 
 def test_driver_uses_the_kernel_when_numba_is_there() -> None:
-    assert spine_kernel.AVAILABLE == (spine_kernel.numba is not None)
+    from jackpy import compiled
+
+    assert spine_kernel.AVAILABLE == (compiled.numba is not None) and (spine_kernel._spine is not None) == spine_kernel.AVAILABLE
 
 
 @pytest.mark.skipif(not spine_kernel.AVAILABLE, reason="numba not installed")
