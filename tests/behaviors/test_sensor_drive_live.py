@@ -8,11 +8,15 @@ sets goals each frame. Nothing here measures or depends on wall time.
 
 from __future__ import annotations
 
-import json
-from pathlib import Path
-
 import numpy as np
 import pytest
+from flock_support import (  # noqa: F401
+    DRIVER_OPTIONS,
+    PALMS,
+    final_fixture,
+    reach_fixture,
+    reach_simulator,
+)
 
 from jackpy.behaviors import BehaviorLoop
 from jackpy.behaviors.anatomy import human_anatomy
@@ -20,8 +24,6 @@ from jackpy.behaviors.sensor_drive import DriveConfig, SensorDrive, replay_into
 from jackpy.body.human import make_human
 from jackpy.devices.flock.driver import FlockDriver, Sample
 from jackpy.devices.flock.protocol import Format, angles_from_rotation, make_record
-from jackpy.devices.flock.simulator import FlockSimulator
-from jackpy.devices.recording import FrameMotion, read_recording
 from jackpy.devices.sensors import (
     INCH,
     TRANSMITTER_TO_WORLD,
@@ -31,19 +33,6 @@ from jackpy.devices.sensors import (
 )
 from jackpy.errors import DeviceError
 
-EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "flock"
-PALMS = ("left_palm", "right_palm")
-
-
-@pytest.fixture(scope="module")
-def reach():
-    return read_recording(EXAMPLE / "reach.jsonl")
-
-
-@pytest.fixture(scope="module")
-def final():
-    return {p: np.array(v) for p, v in json.loads((EXAMPLE / "reach-final.json").read_text()).items()}
-
 
 def human_loop():
     fig = make_human("male", 50)
@@ -51,10 +40,10 @@ def human_loop():
 
 
 def test_live_reach_through_simulator_and_driver(reach, final):
-    motion = FrameMotion(reach)  # holds frame 0 (the neutral stance) until play()
+    motion, sim = reach_simulator(reach)  # holds frame 0 (the neutral stance) until play()
     cfg = sensor_config_from_dict(reach.header["sensors"])
-    with FlockSimulator(4, motion=motion, rate=100.0, autoconfig_delay=0.05) as sim:
-        drv = FlockDriver(sim.paths[0], 4, measurement_rate=100.0, rts_reset=None, autoconfig_wait=0.05)
+    with sim:
+        drv = FlockDriver(sim.paths[0], 4, **DRIVER_OPTIONS)
         drv.start()
         try:
             for b in range(1, 5):

@@ -5,35 +5,25 @@ step is given either no time (a deadline already past) or a minute."""
 
 from __future__ import annotations
 
-import json
 import time
-from pathlib import Path
 
 import numpy as np
 import pytest
+from flock_support import (  # noqa: F401
+    DRIVER_OPTIONS,
+    PALMS,
+    final_fixture,
+    reach_fixture,
+    reach_simulator,
+)
 
 from jackpy.behaviors import BehaviorLoop
 from jackpy.behaviors.anatomy import human_anatomy
 from jackpy.behaviors.sensor_drive import DriveConfig, SensorDrive, replay_into
 from jackpy.body.human import make_human
 from jackpy.devices.flock.driver import FlockDriver
-from jackpy.devices.flock.simulator import FlockSimulator
-from jackpy.devices.recording import FrameMotion, read_recording
 from jackpy.devices.sensors import sensor_config_from_dict
 from jackpy.errors import DeviceError
-
-EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "flock"
-PALMS = ("left_palm", "right_palm")
-
-
-@pytest.fixture(scope="module")
-def reach():
-    return read_recording(EXAMPLE / "reach.jsonl")
-
-
-@pytest.fixture(scope="module")
-def final():
-    return {p: np.array(v) for p, v in json.loads((EXAMPLE / "reach-final.json").read_text()).items()}
 
 
 def split_drive(reach, source=None, **kw) -> SensorDrive:
@@ -103,9 +93,9 @@ def test_idle_runs_the_owed_loop_step_only_with_time_left(reach):
 def test_live_split_reach_through_simulator_and_driver(reach, final):
     """The bench's drive on the real stack: split frames at each cycle, idle steps before the next
     cycle is due (whether one fits depends on the machine; the pose must not)."""
-    motion = FrameMotion(reach)
-    with FlockSimulator(4, motion=motion, rate=100.0, autoconfig_delay=0.05) as sim:
-        drv = FlockDriver(sim.paths[0], 4, measurement_rate=100.0, rts_reset=None, autoconfig_wait=0.05)
+    motion, sim = reach_simulator(reach)
+    with sim:
+        drv = FlockDriver(sim.paths[0], 4, **DRIVER_OPTIONS)
         drv.start()
         try:
             for b in range(1, 5):

@@ -59,7 +59,8 @@ _BUTTON_NAMES = {MOUSE_LEFT: "left", MOUSE_MIDDLE: "middle", MOUSE_RIGHT: "right
 class FrameStats:
     """Timings of one frame (s), the solve's time box (s) and whether it solved, and the frame
     budget's rung (:mod:`jackpy.ui.frame_budget`; on the last rung every other frame of a drag
-    draws without solving)."""
+    draws without solving). ``idle_s``: a split sensor drive's idle step after the draw
+    (:meth:`App.step`), also counted in ``solve_s``."""
 
     solve_s: float = 0.0
     draw_s: float = 0.0
@@ -70,6 +71,7 @@ class FrameStats:
     level: int = 0
     drawn: bool = False
     behaviors_s: float = 0.0
+    idle_s: float = 0.0
 
 
 # ---------------------------------------------------------------------- operator targets
@@ -524,7 +526,14 @@ class App:
     def step(self) -> FrameStats:
         """One frame after the input handlers ran: a sensor-drive frame or the document's step
         (solve when goals changed, then the live analyses), then the draw. The frame budget plans
-        the frame (the solve's box and caps, the draw's scale) from the frames before it."""
+        the frame (the solve's box and caps, the draw's scale) from the frames before it.
+
+        A sensor drive with split frames (``config.split``: the sample's step solved the spine and
+        arms only) then runs :meth:`~jackpy.behaviors.sensor_drive.SensorDrive.idle` after the
+        draw (the pelvis servo and the loop's full step, when owed), until the next frame is due
+        (this frame's start + the budget's target period) but within the frame's solve box (the
+        sensor step and the idle step together; the idle time counts in ``solve_s`` and in
+        ``idle_s``)."""
         stats = FrameStats()
         now = time.perf_counter()
         dt, self._last_step = now - self._last_step, now
@@ -532,7 +541,8 @@ class App:
         self.frame_budget.record(dt, prev.solve_s, prev.box_s, prev.solved, prev.drawn, prev.behaviors_s)
         plan = self.frame_budget.plan(self.settings.ik_time_budget_s)
         stats.level = plan.level
-        if self.driving and self.sensor_drive is not None:
+        driven = self.driving and self.sensor_drive is not None
+        if driven:
             t0 = time.perf_counter()
             loop = getattr(self.sensor_drive, "loop", None)
             if isinstance(loop, BehaviorLoop):
@@ -541,9 +551,8 @@ class App:
                 report = self.sensor_drive.step()  # type: ignore[attr-defined]
                 self.doc.last_report = report.loop or self.doc.last_report
                 stats.timed_out = bool(report.loop is not None and report.loop.timed_out)
-            except Exception as exc:  # a device error stops the drive, the window goes on
-                self.driving = False
-                self.info(f"error: sensor drive stopped: {exc}")
+            except Exception as exc:  # noqa: BLE001 - a device error stops the drive, the window goes on
+                self._sensor_drive_failed(exc)
             stats.solve_s = time.perf_counter() - t0
             stats.box_s, stats.solved = plan.box_s, True
             self.doc.dirty = True
@@ -565,8 +574,33 @@ class App:
             self.draw()
             stats.draw_s = time.perf_counter() - t0
             stats.drawn = self.renderer.frames_drawn != drawn
+        if driven and self.driving and getattr(getattr(self.sensor_drive, "config", None), "split", False):
+            self._sensor_drive_idle(now, stats)
         self.stats = stats
         return stats
+
+    def _sensor_drive_idle(self, start: float, stats: FrameStats) -> None:
+        """A split sensor drive's idle step after the draw (:meth:`step`): until this frame's
+        ``start`` + the target period, and no longer than what the solve box leaves after the
+        sensor step (so the frame budget's estimate of the other costs stays theirs)."""
+        t0 = time.perf_counter()
+        until = min(start + self.frame_budget.target_s, t0 + max(0.0, stats.box_s - stats.solve_s))
+        try:
+            report = self.sensor_drive.idle(until)  # type: ignore[attr-defined]
+        except Exception as exc:  # noqa: BLE001 - as in the sensor step: the drive stops, the window goes on
+            report = None
+            self._sensor_drive_failed(exc)
+        stats.idle_s = time.perf_counter() - t0
+        stats.solve_s += stats.idle_s
+        if report is not None:
+            self.doc.last_report = report
+            stats.timed_out = stats.timed_out or report.timed_out
+            stats.behaviors_s = max(0.0, stats.idle_s - report.solve_s)
+
+    def _sensor_drive_failed(self, exc: Exception) -> None:
+        """A sensor drive's step or idle step raised: driving stops, said in the log."""
+        self.driving = False
+        self.info(f"error: sensor drive stopped: {exc}")
 
     def draw(self) -> None:
         """Render the scene into the renderer's framebuffer: the document as it is (solved and

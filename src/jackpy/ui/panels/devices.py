@@ -1,9 +1,15 @@
 """Devices panel: a Flock of Birds driving the human live (docs/devices.md).
 
-Connect to a port or pyserial URL (a device path, a simulator's pty, ``socket://host:port``), see
-the birds found with their parts, per-bird rate, dropped records and the driver's state; calibrate
-with the operator standing in the figure's pose; start and stop driving (each frame then runs one
-:meth:`~jackpy.behaviors.sensor_drive.SensorDrive.step`); record the raw samples to a file.
+Connect to a port or pyserial URL (a device path, a simulator's pty, ``socket://host:port``), with
+a sensor configuration file (which bird is on which part, mount offsets, transmitter; empty: Jack's
+four sensors), see the birds found with their parts, per-bird rate, dropped records and the
+driver's state; calibrate with the operator standing in the figure's pose; start and stop driving
+(each frame then runs one :meth:`~jackpy.behaviors.sensor_drive.SensorDrive.step`); record the raw
+samples to a file.
+"Split frames" (on by default, :attr:`DeviceLink.split`): a frame's sensor step solves the spine
+and arms only, and the pelvis, balance, stepping and legs run after the draw in
+:meth:`~jackpy.behaviors.sensor_drive.SensorDrive.idle`, in the time left before the next
+workbench frame is due (:meth:`jackpy.ui.app.App.step`).
 
 :class:`DeviceLink` holds that logic apart from ImGui (tests drive it without a window);
 ``jackpy --flock PORT`` connects one at start-up.
@@ -30,7 +36,10 @@ class DeviceLink:
 
     Every action reports errors in the app's log (and in :attr:`error`) instead of raising.
     ``driver_options`` go to :class:`~jackpy.devices.flock.driver.FlockDriver` (e.g.
-    ``rts_reset=None``, ``measurement_rate``).
+    ``rts_reset=None``, ``measurement_rate``). ``sensors_path``: a JSON sensor configuration
+    (:func:`~jackpy.devices.sensors.load_sensor_config`) read at :meth:`connect`; empty: Jack's four
+    sensors. ``split``: the drive's split frames
+    (:class:`~jackpy.behaviors.sensor_drive.DriveConfig` ``split``; :meth:`set_split`).
     """
 
     def __init__(self, app: "App") -> None:
@@ -38,6 +47,8 @@ class DeviceLink:
         self.port = ""
         self.birds = 4
         self.record_path = "session.jsonl"
+        self.sensors_path = ""
+        self.split = True
         self.driver: Any = None
         self.drive: Any = None
         self.recorder: Any = None
@@ -64,9 +75,11 @@ class DeviceLink:
     # ------------------------------------------------------------------ actions
     def connect(self, port: str, birds: int = 4, start_wait: float = 10.0, **driver_options: Any) -> bool:
         """Open ``port`` with ``birds`` sensors (waiting up to ``start_wait`` s for an answer) and
-        attach a sensor drive to the human's behaviors."""
-        from jackpy.behaviors.sensor_drive import SensorDrive
+        attach a sensor drive to the human's behaviors (:attr:`sensors_path`'s configuration,
+        split frames as :attr:`split`)."""
+        from jackpy.behaviors.sensor_drive import DriveConfig, SensorDrive
         from jackpy.devices.flock.driver import FlockDriver
+        from jackpy.devices.sensors import default_config, load_sensor_config
 
         self.disconnect()
         self.port, self.birds = port, int(birds)
@@ -74,6 +87,11 @@ class DeviceLink:
         loop = self.app.loops.get(fig.name) if fig is not None else None
         if loop is None:
             return self._fail(f"connect {port}", DeviceError("no standard human with behaviors to drive"))
+        path = self.sensors_path.strip()
+        try:
+            sensors = load_sensor_config(Path(path).expanduser()) if path else default_config()
+        except JackpyError as exc:
+            return self._fail(f"connect {port}", exc)
         try:
             drv = FlockDriver(port, self.birds, **driver_options)
             drv.start(wait=start_wait)
@@ -81,7 +99,7 @@ class DeviceLink:
             return self._fail(f"connect {port}", exc)
         self.driver = drv
         drv.add_listener(self._record)
-        self.drive = SensorDrive(loop, drv)
+        self.drive = SensorDrive(loop, drv, DriveConfig(sensors=sensors, split=self.split))
         self.app.sensor_drive = self.drive
         self.error = None
         self.app.info(f"connected to {port}: birds {drv.birds}")
@@ -100,6 +118,14 @@ class DeviceLink:
         if self.app.sensor_drive is self.drive:
             self.app.sensor_drive = None
         self.driver = self.drive = None
+
+    def set_split(self, on: bool) -> None:
+        """Split frames on or off, for this link's next drive and the one connected (at once: the
+        next frame follows the new setting; a split frame's owed loop step then runs as a full
+        frame)."""
+        self.split = bool(on)
+        if self.drive is not None:
+            self.drive.config.split = self.split
 
     def calibrate(self) -> bool:
         """Capture the transmitter placement and sensor offsets with the operator in the figure's pose."""
@@ -177,6 +203,17 @@ def draw(app: "App", ui: "UiState") -> None:
         link.port = imgui.input_text("port or URL", link.port)[1]
         imgui.set_next_item_width(100)
         link.birds = max(1, min(14, imgui.input_int("birds", link.birds)[1]))
+        imgui.set_next_item_width(200)
+        link.sensors_path = imgui.input_text("sensors", link.sensors_path)[1]
+        if imgui.is_item_hovered():
+            imgui.set_tooltip("Sensor configuration (JSON, docs/devices.md), read at Connect;\n"
+                              "empty: Jack's four sensors (1 waist, 2 neck, 3 left palm, 4 right palm).")
+        changed, split = imgui.checkbox("Split frames", link.split)
+        if changed:
+            link.set_split(split)
+        if imgui.is_item_hovered():
+            imgui.set_tooltip("A frame's sensor step solves the spine and arms only; the pelvis, balance,\n"
+                              "stepping and legs run after the draw, in the time left in the frame.")
         if not link.connected:
             if imgui.button("Connect") and link.port.strip():
                 link.connect(link.port.strip(), link.birds)
