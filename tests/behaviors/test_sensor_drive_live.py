@@ -52,6 +52,9 @@ def test_live_reach_through_simulator_and_driver(reach, final):
             drive = SensorDrive(loop, drv, cfg)
             drive.calibrate()
             consumed = drive.consumed
+            # on a loaded machine the first AUTO-CONFIG can time out and be retried: that error
+            # stays the driver's last one; nothing may go wrong once the birds stream
+            start_error = drv.last_error
             motion.play()
             reports, worst, after_end = [], 0.0, 0
             for _ in range(20000):  # a cap, not a clock: the test ends on frames counted
@@ -83,7 +86,7 @@ def test_live_reach_through_simulator_and_driver(reach, final):
     assert st.state == "stream" and st.calibrated and st.birds == {1: "pelvis", 2: "neck", 3: "left_palm",
                                                                   4: "right_palm"}
     assert set(st.rates) == {1, 2, 3, 4} and all(v > 0 for v in st.rates.values())
-    assert st.frames >= len(reports) and st.last_error is None
+    assert st.frames >= len(reports) and st.last_error == start_error
 
 
 def test_replay_into_figure_without_simulator(reach, final):

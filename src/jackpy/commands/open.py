@@ -25,7 +25,6 @@ def run(args: argparse.Namespace) -> int:
     from jackpy.ui.app import App
     from jackpy.ui.window import Window
 
-    compiled.warm(compiled.announce_on_stderr)  # before any frame: no solve compiles or loads a kernel
     env, base = session.default_scene()
     app = App(env)
     app.scene_dir = base
@@ -35,6 +34,7 @@ def run(args: argparse.Namespace) -> int:
         from jackpy.motion.player import load_into
 
         load_into(app.doc, args.motion)
+    compiled.warm(compiled.announce_on_stderr)  # before any frame: no solve compiles or loads a kernel
     window = Window(app, "jackpy")
     try:
         offer = session.recovery_offer(args.scene)  # a crashed run's autosave of this scene
