@@ -12,8 +12,12 @@ def register(sub: argparse._SubParsersAction) -> None:
                    help="draw N frames and exit (a smoke test of the window)")
     p.add_argument("--motion", default=None, metavar="MOTION",
                    help="motion file (NAME.motion.json) to load into the timeline (see docs/motion.md)")
+    p.add_argument("--flock", metavar="PORT", default=argparse.SUPPRESS,
+                   help="connect to a Flock of Birds on PORT or URL (as `jackpy --flock PORT`)")
     p.add_argument("--birds", type=int, default=4, metavar="N",
                    help="number of sensor birds on the --flock port (default 4: waist, neck, palms)")
+    p.add_argument("--sensors", default=None, metavar="JSON",
+                   help="sensor configuration for the --flock port (mounts, offsets; default: Jack's four)")
     p.set_defaults(func=run)
 
 
@@ -34,6 +38,11 @@ def run(args: argparse.Namespace) -> int:
         from jackpy.motion.player import load_into
 
         load_into(app.doc, args.motion)
+    sensors = getattr(args, "sensors", None)
+    if sensors:  # a bad sensor configuration too (file:line:column), before the window opens
+        from jackpy.devices.sensors import load_sensor_config
+
+        load_sensor_config(Path(sensors).expanduser())
     compiled.warm(compiled.announce_on_stderr)  # before any frame: no solve compiles or loads a kernel
     window = Window(app, "jackpy")
     try:
@@ -44,7 +53,9 @@ def run(args: argparse.Namespace) -> int:
             from jackpy.ui.panels.devices import link_of
 
             window.ui.open_panels["Devices"] = True
-            link_of(app).connect(flock, getattr(args, "birds", 4))  # an error is in the log panel
+            link = link_of(app)
+            link.sensors_path = sensors or ""
+            link.connect(flock, getattr(args, "birds", 4))  # an error is in the log panel
         frames = getattr(args, "frames", None)
         if frames is None:
             window.run(autosave=lambda: session.autosave(app))
