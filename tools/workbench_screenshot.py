@@ -8,7 +8,9 @@ Run under a display: ``xvfb-run -a -s "-screen 0 1600x1200x24" python tools/work
   panels existed, then both opened: they dock as tabs on the right (``jackpy.ui.layout.dock_unknown``),
   not over the figure (tested in tests/ui/test_window_layout.py);
 - ``path_editor``: four path points in the path editor, floated out of the right dock and enlarged
-  as a user would (tested in tests/ui/test_panel_path_editor.py).
+  as a user would (tested in tests/ui/test_panel_path_editor.py);
+- ``devices_live``: the Devices panel driving the human from the simulated Flock playing the shipped
+  reach, split frames on (tested in tests/ui/test_panels_devices_split.py).
 """
 
 from __future__ import annotations
@@ -99,7 +101,44 @@ def path_editor() -> None:
         win.close()
 
 
-PICTURES: dict[str, Callable[[], None]] = {f.__name__: f for f in (default_layout, old_layout_new_panel, path_editor)}
+def devices_live() -> None:
+    """The Devices panel driving the human live: a simulator plays the shipped reach on a pty, the
+    panel connected with the reach's sensor configuration, calibrated and started (split frames on),
+    the picture taken mid-reach."""
+    from jackpy.devices.flock.simulator import FlockSimulator
+    from jackpy.devices.recording import FrameMotion, read_recording
+    from jackpy.ui.panels.devices import link_of
+
+    example = Path(__file__).resolve().parents[1] / "examples" / "flock"
+    motion = FrameMotion(read_recording(example / "reach.jsonl"))
+    with FlockSimulator(4, motion=motion, rate=100.0, autoconfig_delay=0.05) as sim:
+        app, win = _window()
+        try:
+            win.ui.open_panels["Devices"] = True
+            link = link_of(app)
+            link.sensors_path = str(example / "reach-sensors.json")
+            assert link.connect(sim.paths[0], 4, rts_reset=None, measurement_rate=100.0, autoconfig_wait=0.05), link.error
+            for _ in range(10):
+                win.frame()
+            assert link.calibrate() and link.start(), link.error
+            motion.play()
+            for _ in range(90):
+                win.frame()
+
+            def float_it() -> None:
+                imgui.internal.dock_builder_dock_window("Devices", 0)
+                imgui.set_window_pos("Devices", (820, 60))
+                imgui.set_window_size("Devices", (440, 420))
+
+            win.panels_frame(float_it)
+            _settle_and_save(win, "devices_live")
+        finally:
+            link.disconnect()
+            win.close()
+
+
+PICTURES: dict[str, Callable[[], None]] = {f.__name__: f for f in (default_layout, old_layout_new_panel, path_editor,
+                                                                   devices_live)}
 
 
 def main(names: list[str]) -> None:
