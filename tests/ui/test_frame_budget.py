@@ -2,7 +2,15 @@
 
 import pytest
 
-from jackpy.ui.frame_budget import LADDER, OVERRUN, RECOVER_FRAMES, SETTLE_FRAMES, FrameBudget
+from jackpy.ui.frame_budget import (
+    LADDER,
+    OVERRUN,
+    RECOVER_FRACTION,
+    RECOVER_FRACTION_SOLVING,
+    RECOVER_FRAMES,
+    SETTLE_FRAMES,
+    FrameBudget,
+)
 
 DOC_BOX = 0.030
 
@@ -172,3 +180,33 @@ def test_on_the_last_rung_a_drag_solves_every_other_frame_and_settles_on_every_f
     app.doc.move_goal(g, m)
     assert not app.manipulator.active and app.doc.needs_solve
     assert app.step().solved  # the frame after a solving one: no drag, so it solves
+
+
+def test_the_last_rung_steps_up_when_its_solving_frames_would_fit_every_frame():
+    """On the last rung a drag alternates a solving frame (24 ms) and a draw-only frame (14 ms) at
+    a 33 ms target: the rung above solves every frame at the same caps, so its frames would take
+    24 ms; the budget goes up although every other frame is over RECOVER_FRACTION of the target.
+    Solving frames over RECOVER_FRACTION_SOLVING keep it down."""
+    target = 1 / 30
+    assert LADDER[-2].iterations == LADDER[-1].iterations and LADDER[-2].passes == LADDER[-1].passes
+    assert LADDER[-2].render_scale == LADDER[-1].render_scale and LADDER[-2].solve_every == 1
+
+    def drag(fb: FrameBudget, frames: int, solving: float, drawing: float = 0.014) -> None:
+        for _ in range(frames):
+            plan = fb.plan(DOC_BOX)
+            if plan.solve:
+                fb.record(solving, 0.010, plan.box_s, True, True)
+            else:
+                fb.record(drawing, 0.0, plan.box_s, False, True)
+
+    for solving, up in ((0.024, True), (RECOVER_FRACTION_SOLVING * target + 0.002, False)):
+        assert RECOVER_FRACTION * target < solving
+        fb = FrameBudget(30.0, adaptive=True)
+        fb.level = len(LADDER) - 1
+        drag(fb, 2 * RECOVER_FRAMES - 2, solving)  # RECOVER_FRAMES - 1 solving frames
+        assert fb.level == len(LADDER) - 1
+        drag(fb, 2, solving)
+        assert (fb.level == len(LADDER) - 2) == up
+        if up:  # and the rung above, solving every frame in 24 ms, stays
+            run(fb, 3 * RECOVER_FRAMES, period=0.024, solve=0.010)
+            assert fb.level == len(LADDER) - 2

@@ -126,8 +126,9 @@ def _interleaved(with_cad: bool, repeat: int, block: int = 10) -> tuple[_Drag, _
             d.frame(record=False)
     while len(ours.frame_ms) < repeat:
         for d in (ours, base):
+            d.app.restart_frame_clock()  # the other App's block is not a frame of this one's budget
             for _ in range(2):
-                d.frame(record=False)  # the other App's frame period is not this one's
+                d.frame(record=False)
             for _ in range(block):
                 d.frame()
     return ours, base

@@ -523,6 +523,12 @@ class App:
                                     ord("9"): "iso"}[key])
 
     # ------------------------------------------------------------------ frame
+    def restart_frame_clock(self) -> None:
+        """The time since the last :meth:`step` was not this App's frame (another App's frames ran,
+        or a blocking dialog): the next step's period counts from now, so the frame budget does
+        not read the gap as a slow frame."""
+        self._last_step = time.perf_counter()
+
     def step(self) -> FrameStats:
         """One frame after the input handlers ran: a sensor-drive frame or the document's step
         (solve when goals changed, then the live analyses), then the draw. The frame budget plans
