@@ -210,3 +210,37 @@ def test_the_last_rung_steps_up_when_its_solving_frames_would_fit_every_frame():
         if up:  # and the rung above, solving every frame in 24 ms, stays
             run(fb, 3 * RECOVER_FRAMES, period=0.024, solve=0.010)
             assert fb.level == len(LADDER) - 2
+
+
+def test_a_restarted_frame_clock_keeps_a_gap_out_of_the_budget():
+    """Time the App did not spend on its own frames (another App's, a blocking dialog) is not a
+    frame: after ``restart_frame_clock`` the next step's period counts from the restart."""
+    import time
+
+    from jackpy.document.effectors import find_effectors
+    from jackpy.ui.app import App
+    from jackpy.ui.session import default_scene
+
+    gap = 0.5
+    others = []
+    for restart in (False, True):
+        env, _ = default_scene()
+        app = App(env, size=(320, 240))
+        app.frame_budget.adaptive = True
+        fig = app.figure_of_interest()
+        g = app.ensure_goal(fig, find_effectors(fig)["right_hand"], "position")
+
+        def solving_step() -> None:  # a frame that solves is a frame the budget measures
+            m = g.manip.copy()
+            m[0, 3] += 0.005
+            app.doc.move_goal(g, m)
+            app.step()
+
+        solving_step()
+        solving_step()
+        time.sleep(gap)
+        if restart:
+            app.restart_frame_clock()
+        solving_step()  # records the period that ended here: the gap's, or from the restart
+        others.append(app.frame_budget.other_s)
+    assert others[0] >= gap > others[1]
