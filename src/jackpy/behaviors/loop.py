@@ -67,9 +67,10 @@ FAR = 1.0e3
 LIMB_FLOOR_S, LIMB_FLOOR_ITERATIONS = 0.001, 1
 #: how the passes solve their priority levels (``ik.solve``'s ``priorities``): the book's projected
 #: BFGS with restoration. [decision] The bounded default meets the priority mix's cost targets, but
-#: under the passes' 8-15 iteration caps its per-frame progress differs: a pivot step declined (the
-#: free foot turned 49.5 deg where the book step leaves 42.1), a COM settling two frames late after
-#: a balance step, a frame with the COM 1.2 cm outside the contact region (docs/ik.md)
+#: under the passes' 8-15 iteration caps its per-frame progress differs: its lightly damped step
+#: turns a pivoting free foot further (a pivot step declined: 49.5 deg where the book step leaves
+#: 42.1), and no goal holds that foot's yaw (one frame with the COM 1.2 cm outside the turned
+#: contact region); causes traced in docs/ik.md
 PRIORITIES = "book"
 
 def reusable_attributes(cls: type) -> tuple[str, ...] | None:

@@ -207,7 +207,13 @@ class Manifold:
             if run.expired():
                 return ev, run.stop_status()
             Fh, Jh = self.stacked(ev)
-            lower, upper = self._frozen(run, z, 2.0 * (Jh.T @ Fh))
+            if self.hi and run.achieved(ev, self.hi[-1]):
+                # the held levels are met: their gradient is a residual inside the tolerance, not a
+                # compromise's multiplier, and restoration keeps them; freezing bounds on it would
+                # lock joints for nothing (a knee at its limit while the hand reached 40 cm down)
+                lower, upper = run.lo - z, run.hi - z
+            else:
+                lower, upper = self._frozen(run, z, 2.0 * (Jh.T @ Fh))
             c = J.T @ F
             Jm = np.vstack([HOLD_WEIGHT * Jh, J]) if self.hi else J
             lam = max((DAMPING_FLOOR + DAMPING * math.sqrt(G)) * boost, CONDITION * float(np.sum(Jm * Jm)))

@@ -34,11 +34,11 @@ from jackpy.analysis.parts import figure_parts
 from jackpy.analysis.reach import REACH_TOLERANCE, PointReach, Posture, _com_margin, point_reach
 from jackpy.peabody.model import Figure
 
-#: how the torso and pelvis stages solve their priority levels (``ik.solve``'s ``priorities``).
-#: [decision] The book's step, as the behavior loop's passes: with the bounded default the pelvis
-#: stage's 40 cm reach below the hand ended with both knees straight (tests/planning/test_stages.py;
-#: not yet understood, docs/ik.md)
-PRIORITIES = "book"
+#: how the torso and pelvis stages solve their priority levels (``ik.solve``'s ``priorities``):
+#: the bounded default. (With bounds frozen on the met feet and COM levels' in-tolerance gradient,
+#: the pelvis stage's 40 cm reach below the hand ended with both knees straight; the bounded step
+#: no longer freezes while the held levels are met, docs/ik.md)
+PRIORITIES = "bounded"
 STAGES = ("arm", "torso", "pelvis", "step")
 #: how the report names each stage
 STAGE_TEXT = {"arm": "arm only", "torso": "arm and torso", "pelvis": "knees bent (pelvis lowered), balanced",
