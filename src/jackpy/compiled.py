@@ -7,9 +7,9 @@ call: on a fresh install that is seconds (a priority problem's first bound group
 row step inside a solve: 9.5 s), and even from a warm cache a kernel's first call loads it (tens
 of ms), either of which would land inside a workbench frame or a live sensor frame. So every kernel
 is declared here with the one signature the hot path calls it with (C-contiguous float64, int64
-and bool arrays), and :func:`warm` compiles or loads them all before the first frame (the
-workbench, the live drive and the bench call it). A call with other types still works: numba
-compiles that signature when it is met.
+and bool arrays), and :func:`warm` compiles or loads them all before the first frame: ``jackpy
+open`` (whose frames also run the live sensor drive) and ``jackpy bench`` call it, a script may too.
+A call with other types still works: numba compiles that signature when it is met.
 
 ``JACKPY_NO_JIT=1`` in the environment (or numba not installed) turns every kernel off: each
 module then runs its numpy reference, and :func:`warm` does nothing.

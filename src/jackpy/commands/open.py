@@ -17,7 +17,7 @@ def register(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--birds", type=int, default=4, metavar="N",
                    help="number of sensor birds on the --flock port (default 4: waist, neck, palms)")
     p.add_argument("--sensors", default=None, metavar="JSON",
-                   help="sensor configuration for the --flock port (mounts, offsets; default: Jack's four)")
+                   help="sensor configuration (mounts, offsets; default: Jack's four) for --flock or the Devices panel's Connect")
     p.set_defaults(func=run)
 
 
@@ -49,13 +49,14 @@ def run(args: argparse.Namespace) -> int:
         offer = session.recovery_offer(args.scene)  # a crashed run's autosave of this scene
         window.ui.recovery_offer = str(offer) if offer is not None else None
         flock = getattr(args, "flock", None)
-        if flock:
+        if flock or sensors:
             from jackpy.ui.panels.devices import link_of
 
             window.ui.open_panels["Devices"] = True
             link = link_of(app)
-            link.sensors_path = sensors or ""
-            link.connect(flock, getattr(args, "birds", 4))  # an error is in the log panel
+            link.sensors_path = sensors or ""  # without --flock: the panel's Connect uses it
+            if flock:
+                link.connect(flock, getattr(args, "birds", 4))  # an error is in the log panel
         frames = getattr(args, "frames", None)
         if frames is None:
             window.run(autosave=lambda: session.autosave(app))

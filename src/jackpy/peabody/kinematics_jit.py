@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from jackpy.compiled import AVAILABLE, kernel, numba  # noqa: F401 - numba: the one switch, re-exported
+from jackpy.compiled import AVAILABLE, kernel  # noqa: F401 - AVAILABLE: whether forward_kernel is compiled
 
 
 def _forward(q, location, root_inv, parent, P, Q, seg_start, seg_count, slot_dof, slot_rot, slot_axis,

@@ -15,7 +15,7 @@ import math
 
 import numpy as np
 
-from jackpy.compiled import kernel, numba  # the one numba switch (JACKPY_NO_JIT)
+from jackpy.compiled import AVAILABLE, kernel  # the one numba switch (JACKPY_NO_JIT) and the kernels registry
 
 
 def _twist(axes, origins, cols, sign, trans, mom, ang):  # pragma: no cover - compiled
@@ -144,7 +144,7 @@ def _com_rows(moved, mc, mass_moved, total, mom, ang, J):  # pragma: no cover - 
         J[2, c] = (a0 * s1 - a1 * s0 + mom[2, c] * mm) / total
 
 
-if numba is not None:
+if AVAILABLE:
     _site, _rows, _angle = kernel(_site, None), kernel(_rows, None), kernel(_angle, None)
     twist = kernel(_twist, "(f8[:, ::1], f8[:, ::1], i8[::1], f8[::1], b1[::1], f8[:, ::1], f8[:, ::1])")
     frame_goal = kernel(_frame_goal, "(f8[:, ::1], f8[:, ::1], f8[:, ::1], f8, f8, f8, f8, f8, f8[:, ::1], "
