@@ -244,3 +244,18 @@ def test_a_restarted_frame_clock_keeps_a_gap_out_of_the_budget():
         solving_step()  # records the period that ended here: the gap's, or from the restart
         others.append(app.frame_budget.other_s)
     assert others[0] >= gap > others[1]
+
+
+def test_the_last_rung_stays_while_the_smallest_box_is_squeezed_out():
+    """Solving frames under RECOVER_FRACTION_SOLVING of the target, but the frame's other costs plus
+    the smallest box (twice the behaviors' own work) leave no room for a solve on every frame: the
+    rung above would step straight back down, so the budget stays."""
+    fb = FrameBudget(30.0, adaptive=True)
+    fb.level = len(LADDER) - 1
+    for _ in range(3 * RECOVER_FRAMES):
+        plan = fb.plan(DOC_BOX)
+        if plan.solve:  # 20 ms frames, 12 ms of them the behaviors: the smallest box is 24 ms
+            fb.record(0.020, 0.014, plan.box_s, True, True, behaviors_s=0.012)
+        else:  # 14 ms of drawing: the other costs (>= 11 ms) + 24 + 1 > 33.3
+            fb.record(0.014, 0.0, plan.box_s, False, True)
+    assert 0.020 < RECOVER_FRACTION_SOLVING / 30.0 and fb.level == len(LADDER) - 1

@@ -73,7 +73,9 @@ same caps and view, so its frames cost what this rung's solving frames cost: onl
 towards the step back up, calm under this fraction of the target. (With the frames that draw only
 counted too, a drag that solves in 24 ms and draws in 14 ms on llvmpipe never went back up:
 every other frame was over 0.6 of the target, and half the frames went without a solve at 40
-frames/s that could all have solved.)"""
+frames/s that could all have solved.) Not while the smallest box is squeezed out of the target
+(the rung above would step straight back down: in the window's whole-figure drag it went up and
+down every ~45 frames)."""
 
 
 @dataclass(frozen=True)
@@ -173,6 +175,8 @@ class FrameBudget:
         if self.quality.solve_every > 1:
             if solved:  # a frame that only drew says nothing about the rung above
                 self._calm = self._calm + 1 if period_s < RECOVER_FRACTION_SOLVING * self.target_s else 0
+            if squeezed:  # the smallest box would not fit a solve on every frame: the rung above is too dear
+                return
         else:
             self._calm = self._calm + 1 if period_s < RECOVER_FRACTION * self.target_s else 0
         self._recover()
