@@ -69,7 +69,7 @@ def test_local_pool_and_dask_cluster_give_identical_per_body_tables(tmp_path: Pa
 @pytest.mark.timeout(1800)
 def test_interrupt_keeps_finished_rows_and_resume_finishes(tmp_path: Path) -> None:
     out = tmp_path / "sweep"
-    n = 48
+    n = 96  # on a fast machine 48 bodies could all finish before the interrupt landed (kept == n)
     proc = subprocess.Popen(_cli("--n", str(n), "--workers", "2", "-o", str(out)), cwd=ROOT,
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     deadline = time.monotonic() + 900
